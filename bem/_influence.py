@@ -1,0 +1,204 @@
+"""Real-space influence coefficients of the steady-sliding operator (eq. 2.4-2.5).
+
+Element: piecewise-constant pressure on ``N`` equal panels of one period,
+collocation at the panel centres ``X_j = j/N - 1/2``.  The operator is circulant,
+``k v_i = sum_j C[(i - j) mod N] sigma_j``, and this module returns the first
+column ``C_m`` (influence at ``X = m/N`` of the panel centred at 0).
+
+Units: ``X = x/lambda``; ``k v``; pressure in ``E_ref/(1 - nu^2)``; compliances in
+``1/E_ref``; times in ``tau_ref``; speed ``w = V tau_ref k``.
+
+Elastic part (eq. 2.2 integrated over a panel, exact)::
+
+    c(X) = (2/pi) [Cl2(2 pi (X + 1/(2N))) - Cl2(2 pi (X - 1/(2N)))]
+
+Memory part of one Prony term ``J_i exp(-t/tau_i)`` (second term of eq. 2.5,
+with ``y = V z`` and the memory length ``L_i = V tau_i / lambda = w tau_i/(2 pi)``)::
+
+    M_m = (J_i/L_i) int_0^inf exp(-y/L_i) c(X_m + y) dy.
+
+It is evaluated by the exact recursion ``E_m = S_m + exp(-h/L) E_(m+1)``
+(h = 1/N, periodic in m) with ``S_m = int_0^h exp(-y/L) c(X_m + y) dy``: O(N) per
+term after the N source integrals.  The source integrals use Gauss rules for
+the weight ``exp(-a t)`` on [0, 1] (a = h/L), so any speed, from ``L << h`` to
+``L >> lambda``, is integrated with the same number of nodes; the two intervals
+that contain a kink of ``c`` (a ``y log y`` singularity of its derivative at a
+panel edge) get a graded composite rule.
+
+Fourier check (mode ``n``, ``n != 0``): the symbol of the operator is
+``(2/|n|) J*(n) sinc(pi n/N)`` (times 1/N per panel) with
+``J*(n) = J(0+) + sum_i J_i / (1 - i n w tau_i)``, i.e. ``J*(-k_n V)`` of
+``J*(omega) = J(0+) + int_0^inf J'(s) exp(-i omega s) ds``.
+"""
+from __future__ import annotations
+
+from functools import lru_cache
+
+import numpy as np
+from scipy.linalg import eigh_tridiagonal
+
+from . import _kernels
+
+#: Gauss points for the source intervals near the panel-edge kinks / far away.
+_N_NEAR = 16
+_N_FAR = 9
+#: intervals within this many panels of a kink use the near rule
+_NEAR_BAND = 3
+#: above this a = h/L the weight e^(-a t) is treated as e^(-a t) on [0, inf)
+_A_LAGUERRE = 120.0
+
+
+@lru_cache(maxsize=256)
+def exp_weight_rule(a: float, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss rule for ``int_0^1 exp(-a t) f(t) dt`` (exact for degree 2n-1).
+
+    For ``a >= 120`` the truncation at t = 1 is below 1e-50 relative and the
+    scaled Gauss-Laguerre rule is used.  Otherwise the measure is discretised by a
+    composite Gauss-Legendre rule fine enough to be exact to rounding for
+    polynomials of degree 2n-1 times the exponential, and the Jacobi matrix is
+    obtained by the Stieltjes (Lanczos) procedure with full reorthogonalisation.
+
+    Parameters
+    ----------
+    a : float
+        Decay rate, ``a >= 0``.
+    n : int
+        Number of nodes.
+
+    Returns
+    -------
+    t, w : ndarray
+        Nodes in (0, 1) and positive weights.
+    """
+    if a >= _A_LAGUERRE:
+        s, w = np.polynomial.laguerre.laggauss(n)
+        return s / a, w / a
+    pieces = max(4, int(np.ceil(a / 2.0)))
+    g, gw = np.polynomial.legendre.leggauss(n + 12)
+    edges = np.linspace(0.0, 1.0, pieces + 1)
+    half = 0.5 * np.diff(edges)
+    mid = 0.5 * (edges[1:] + edges[:-1])
+    t = (mid[:, None] + half[:, None] * g[None, :]).ravel()
+    w = (half[:, None] * gw[None, :]).ravel() * np.exp(-a * t)
+    # Lanczos on diag(t) in the w-inner product, full reorthogonalisation
+    q = np.zeros((n + 1, t.size))
+    alpha = np.zeros(n)
+    beta = np.zeros(n)
+    q[0] = 1.0 / np.sqrt(w.sum())
+    for j in range(n):
+        v = t * q[j]
+        alpha[j] = np.dot(w * q[j], v)
+        for _ in range(2):
+            v -= q[: j + 1].T @ (q[: j + 1] @ (w * v))
+        nv = np.sqrt(np.dot(w * v, v))
+        if j + 1 < n:
+            beta[j + 1] = nv
+            q[j + 1] = v / nv
+    nodes, vec = eigh_tridiagonal(alpha, beta[1:])
+    weights = w.sum() * vec[0] ** 2
+    return nodes, weights
+
+
+def _kink_integral(m: int, nodes: int, a: float) -> float:
+    """``int_0^1 exp(-a t) c(X_m + t h) dt`` for an interval with a kink at t = 1/2.
+
+    Composite Gauss-Legendre (16 points) on subintervals graded geometrically
+    (ratio 1/4) toward the kink, refined to width 2/a where the weight varies.
+    """
+    g, gw = np.polynomial.legendre.leggauss(16)
+    total = 0.0
+    for lo, hi, kink_at_hi in ((0.0, 0.5, True), (0.5, 1.0, False)):
+        length = hi - lo
+        dist = length * 0.25 ** np.arange(0, 27)
+        pts = set((hi - dist) if kink_at_hi else (lo + dist))
+        pts.update((lo, hi))
+        if a * length > 2.0:
+            step = 2.0 / a
+            jmax = int(min(length / step, 40))
+            pts.update(lo + step * np.arange(1, jmax + 1))
+        b = np.array(sorted(p for p in pts if lo <= p <= hi))
+        half = 0.5 * np.diff(b)
+        mid = 0.5 * (b[1:] + b[:-1])
+        t = (mid[:, None] + half[:, None] * g[None, :]).ravel()
+        w = (half[:, None] * gw[None, :]).ravel() * np.exp(-a * t)
+        x = (m + t) / nodes
+        vals = np.empty_like(x)
+        _kernels.panel_values(x, nodes, vals)
+        total += float(np.dot(w, vals))
+    return total
+
+
+def elastic_coefficients(nodes: int) -> np.ndarray:
+    """Elastic panel coefficients ``c(X_m)`` for unit compliance (J = 1).
+
+    Returns
+    -------
+    ndarray, shape (nodes,)
+        ``c_m`` for m = 0..nodes-1 (m and m - nodes are the same offset).
+    """
+    m = np.arange(nodes)
+    x = np.where(m <= nodes // 2, m, m - nodes) / nodes
+    out = np.empty(nodes)
+    _kernels.panel_values(x, nodes, out)
+    return out
+
+
+def memory_coefficients(nodes: int, length: float) -> np.ndarray:
+    """Memory coefficients of one Prony term per unit ``J_i`` (second term of eq. 2.5).
+
+    Parameters
+    ----------
+    nodes : int
+        Number of panels N.
+    length : float
+        Memory length ``L = V tau_i / lambda > 0`` in wavelengths.
+
+    Returns
+    -------
+    ndarray, shape (nodes,)
+        ``(1/L) int_0^inf exp(-y/L) c(X_m + y) dy`` for m = 0..nodes-1.
+    """
+    a = (1.0 / nodes) / length
+    t_near, w_near = exp_weight_rule(a, _N_NEAR)
+    t_far, w_far = exp_weight_rule(a, _N_FAR)
+    src = np.empty(nodes)
+    _kernels.memory_sources(nodes, t_near, w_near, t_far, w_far, _NEAR_BAND - 1, src)
+    src[0] = _kink_integral(0, nodes, a)
+    src[nodes - 1] = _kink_integral(-1, nodes, a)
+    out = np.empty(nodes)
+    _kernels.exponential_recursion(src, a, out)
+    out *= a  # (1/L) * h * (1/h) E: the recursion ran on S_m / h
+    return out
+
+
+def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], ...],
+                              speed: float, nodes: int) -> np.ndarray:
+    """First column of the circulant operator for a Prony creep function.
+
+    Parameters
+    ----------
+    j_plus : float
+        Instantaneous compliance J(0+) in 1/E_ref.
+    terms : tuple of (J_i, tau_i)
+        Prony terms (J_i >= 0 in 1/E_ref, tau_i > 0 in tau_ref).
+    speed : float
+        ``w = V tau_ref k >= 0``; at 0 the memory terms take their relaxed limit.
+    nodes : int
+        Number of panels.
+
+    Returns
+    -------
+    ndarray, shape (nodes,)
+        ``C_m``: k v at X = m/N due to unit pressure on the panel centred at 0.
+    """
+    base = elastic_coefficients(nodes)
+    total = j_plus * base
+    for j_i, tau_i in terms:
+        if j_i == 0.0:
+            continue
+        length = speed * tau_i / (2.0 * np.pi)
+        if length == 0.0:
+            total = total + j_i * base  # fully relaxed: J(0+) + J_i acts at once
+        else:
+            total = total + j_i * memory_coefficients(nodes, length)
+    return total
