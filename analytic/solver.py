@@ -29,10 +29,10 @@ _CONVERGED = 1e-8  # a residual above this marks the solution as failed
 
 def _check_finite(name, value, allowed):
     if not isinstance(value, (int, float, np.floating, np.integer)) or isinstance(value, bool):
-        raise ValueError(f"{name} = {value!r}: must be a real number ({allowed})")
+        raise ValueError(f"{name} = {value!r}: must be a real number {allowed}")
     value = float(value)
     if not math.isfinite(value):
-        raise ValueError(f"{name} = {value!r}: must be finite ({allowed})")
+        raise ValueError(f"{name} = {value!r}: must be finite and {allowed}")
     return value
 
 
@@ -40,12 +40,12 @@ def validate(load=None, speed=None, ratio=None, hk=None, penetration=None):
     """Check the dimensionless inputs; raise ValueError naming the parameter, value and range."""
     out = {}
     if load is not None:
-        v = _check_finite("load", load, "load > 0")
+        v = _check_finite("load", load, "> 0")
         if v <= 0.0:
             raise ValueError(f"load = {v!r}: must be > 0")
         out["load"] = v
     if speed is not None:
-        v = _check_finite("speed", speed, "speed ≥ 0")
+        v = _check_finite("speed", speed, "≥ 0")
         if v < 0.0:
             raise ValueError(f"speed = {v!r}: must be ≥ 0")
         if v != 0.0 and not SPEED_RANGE[0] <= v <= SPEED_RANGE[1]:
@@ -53,17 +53,17 @@ def validate(load=None, speed=None, ratio=None, hk=None, penetration=None):
                              " (beyond, the viscoelastic correction is below double precision)")
         out["speed"] = v
     if ratio is not None:
-        v = _check_finite("ratio", ratio, "ratio > 1")
+        v = _check_finite("ratio", ratio, "> 1 (E∞ > E0)")
         if v <= 1.0:
             raise ValueError(f"ratio = {v!r}: must be > 1 (E∞ > E0)")
         out["ratio"] = v
     if hk is not None:
-        v = _check_finite("hk", hk, "hk > 0")
+        v = _check_finite("hk", hk, "> 0")
         if v <= 0.0:
             raise ValueError(f"hk = {v!r}: must be > 0")
         out["hk"] = v
     if penetration is not None:
-        v = _check_finite("penetration", penetration, "0 < penetration ≤ 1")
+        v = _check_finite("penetration", penetration, "in (0, 1] (Δ/h)")
         if not 0.0 < v <= 1.0:
             raise ValueError(f"penetration = {v!r}: must be in (0, 1] (Δ/h)")
         out["penetration"] = v
