@@ -1,0 +1,52 @@
+"""Periodic boundary-element solver for steady viscoelastic sliding (the BEM road).
+
+A rigid periodic indenter slides at speed V toward +x over a linear viscoelastic
+half-plane (plane strain, frictionless, adhesionless).  In the frame of the
+indenter the steady surface displacement is ``v = Phi_V * sigma`` over one
+period (eq. 2.4) with the kernel of eq. (2.5), discretised on N equal panels
+(piecewise-constant pressure, collocation at the panel centres) and solved with a
+primal-dual active-set method on FFT products.  This package never imports
+:mod:`analytic`.
+
+Units (stated once): positions ``X = x/lambda`` with the crest of the sinusoid at
+0; heights and displacements ``k y``, ``k v`` (k = 2 pi/lambda); pressures in
+``E_ref/(1 - nu^2)``; compliances in ``1/E_ref``; times in ``tau_ref``; speed
+``w = V tau_ref k``.  For the standard linear solid ``E_ref = E0`` and
+``tau_ref = tau`` (the creep time), so ``load`` is the paper's p~ and ``speed``
+its V/V0.  Signs: pressure positive in compression, displacement positive into
+the body, the leading edge of a contact is its +x edge.
+"""
+from ._influence import influence_coefficients_nd as _coefficients
+from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
+from ._result import BemResult, Patch
+from ._solver import _check_positive_int, _check_real, solve
+
+
+def influence_coefficients(material, speed, nodes):
+    """First column ``C_m`` of the steady-sliding operator (eq. 2.5) on N panels.
+
+    ``k v_i = sum_j C[(i - j) mod N] sigma_j`` with panels centred at
+    ``X_j = j/N - 1/2`` and ``C_m`` the response at the offset ``X = m/N``
+    (m > N/2 meaning ``m/N - 1``).  Pressure in ``E_ref/(1 - nu^2)``.
+
+    Parameters
+    ----------
+    material : Prony
+    speed : float
+        ``w = V tau_ref k >= 0``.
+    nodes : int
+        ``N >= 8``.
+
+    Returns
+    -------
+    ndarray, shape (nodes,)
+    """
+    if not isinstance(material, Prony):
+        raise ValueError(f"material={material!r} is not allowed: a bem.Prony creep function")
+    speed = _check_real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0)
+    nodes = _check_positive_int("nodes", nodes, 8)
+    return _coefficients(material.j_plus, material.terms, speed, nodes)
+
+
+__all__ = ["BemResult", "Harmonics", "Patch", "Prony", "SampledProfile", "Sinusoid",
+           "influence_coefficients", "read_profile", "read_prony", "solve"]

@@ -1,0 +1,121 @@
+"""FFT circular convolution with the sliding operator, and a right-preconditioned GMRES.
+
+Transform convention
+--------------------
+* Panels j = 0..N-1 are centred at ``X_j = j/N - 1/2`` (``X = x/lambda``); the
+  collocation point i sits at the centre of panel i.
+* Panel j acts on point i through ``C[(i - j) mod N]``:
+  ``k v_i = sum_j C[(i - j) mod N] sigma_j``, where ``C_m`` is the response at the
+  offset ``X = m/N`` (``m > N/2`` stands for the offset ``m/N - 1``, i.e. behind).
+* Forward transform without a factor, ``Chat_k = sum_m C_m exp(-2 pi i k m/N)``
+  (``scipy.fft.rfft``); the inverse ``irfft`` carries the 1/N.  So
+  ``v = irfft(Chat * rfft(sigma))``.
+* Sliding direction: material streams toward -x, so the delayed (memory) part of
+  the response lies behind the load, at offsets X < 0 (m > N/2); the symbol is
+  ``Chat_k ~ (2/k) J*(k) sinc(pi k/N)`` with ``J*(k) = J(0+) + sum J_i/(1 - i k w tau_i)``.
+* Mode 0 carries nothing (the displacement is measured from the mean line of the
+  deformed surface): ``Chat_0`` is set to exactly 0 (it is a sum of
+  coefficients that vanishes up to rounding), and the pseudo-inverse maps the
+  mean to 0 as well.
+"""
+from __future__ import annotations
+
+import numpy as np
+import scipy.fft as sfft
+
+
+class CirculantOperator:
+    """``v = C sigma`` and its pseudo-inverse by FFT, O(N log N).
+
+    Parameters
+    ----------
+    column : ndarray, shape (N,)
+        First column ``C_m`` of the circulant (see the module docstring).
+    """
+
+    def __init__(self, column: np.ndarray):
+        self.n = int(column.size)
+        self.column = np.asarray(column, dtype=float)
+        sym = sfft.rfft(self.column)
+        sym[0] = 0.0
+        self.symbol = sym
+        inv = np.zeros_like(sym)
+        inv[1:] = 1.0 / sym[1:]
+        self.inverse_symbol = inv
+
+    def apply(self, sigma: np.ndarray) -> np.ndarray:
+        """k v = C sigma (mean of the result exactly 0)."""
+        return sfft.irfft(self.symbol * sfft.rfft(sigma), self.n)
+
+    def pseudo_solve(self, v: np.ndarray) -> np.ndarray:
+        """sigma with C sigma = v - mean(v) and mean(sigma) = 0."""
+        return sfft.irfft(self.inverse_symbol * sfft.rfft(v), self.n)
+
+
+def gmres(matvec, precond, b, x0, rtol, restart, maxiter):
+    """Restarted GMRES with right preconditioning (true residuals are monitored).
+
+    Solves ``A x = b`` as ``A M u = b``, ``x = M u``.  Classical Gram-Schmidt with
+    one reorthogonalisation; Givens rotations; at each restart the true residual
+    ``b - A x`` is recomputed.
+
+    Returns
+    -------
+    x : ndarray
+    iterations : int
+        Products with ``A M``.
+    relres : float
+        ``||b - A x|| / ||b||`` (true residual at exit).
+    converged : bool
+    """
+    bnorm = float(np.linalg.norm(b))
+    if bnorm == 0.0:
+        return np.zeros_like(b), 0, 0.0, True
+    x = np.array(x0, dtype=float, copy=True)
+    r = b - matvec(x)
+    total = 0
+    n = b.size
+    m = max(1, min(restart, n))
+    basis = np.empty((m + 1, n))
+    while True:
+        beta = float(np.linalg.norm(r))
+        if beta <= rtol * bnorm:
+            return x, total, beta / bnorm, True
+        if total >= maxiter:
+            return x, total, beta / bnorm, False
+        hess = np.zeros((m + 1, m))
+        cs = np.zeros(m)
+        sn = np.zeros(m)
+        g = np.zeros(m + 1)
+        g[0] = beta
+        basis[0] = r / beta
+        k = 0
+        for j in range(m):
+            w = matvec(precond(basis[j]))
+            total += 1
+            h = basis[: j + 1] @ w
+            w -= basis[: j + 1].T @ h
+            h2 = basis[: j + 1] @ w
+            w -= basis[: j + 1].T @ h2
+            h += h2
+            hn = float(np.linalg.norm(w))
+            hess[: j + 1, j] = h
+            hess[j + 1, j] = hn
+            for i in range(j):
+                tmp = cs[i] * hess[i, j] + sn[i] * hess[i + 1, j]
+                hess[i + 1, j] = -sn[i] * hess[i, j] + cs[i] * hess[i + 1, j]
+                hess[i, j] = tmp
+            den = np.hypot(hess[j, j], hess[j + 1, j])
+            cs[j] = hess[j, j] / den
+            sn[j] = hess[j + 1, j] / den
+            hess[j, j] = den
+            hess[j + 1, j] = 0.0
+            g[j + 1] = -sn[j] * g[j]
+            g[j] = cs[j] * g[j]
+            k = j + 1
+            if abs(g[j + 1]) <= rtol * bnorm or total >= maxiter or hn == 0.0:
+                break
+            basis[j + 1] = w / hn
+        y = np.linalg.solve(np.triu(hess[:k, :k]), g[:k])
+        x += precond(basis[:k].T @ y)
+        r = b - matvec(x)
