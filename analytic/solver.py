@@ -257,9 +257,13 @@ def _state_at(y, speed, ratio):
     return state(A, G, speed, ratio)
 
 
-def _search(fun, y0_lo, y0_hi):
-    """Bracket a root of the increasing function fun(y) starting from [y0_lo, y0_hi]."""
-    lo, hi = y0_lo, max(y0_hi, y0_lo + 1e-3)
+def _find_half_angle(fun, y_lo, y_hi):
+    """Root of the increasing function fun(y) of y = log tan(A/2), bracketed from [y_lo, y_hi].
+
+    Returns (y, converged, iterations, message); when no bracket exists within |y| ≤ 40 the
+    message says so and y is the last end tried.
+    """
+    lo, hi = y_lo, max(y_hi, y_lo + 1e-3)
     flo, fhi = fun(lo), fun(hi)
     while flo > 0.0 and lo > -_Y_MAX:
         hi, fhi = lo, flo
@@ -269,7 +273,13 @@ def _search(fun, y0_lo, y0_hi):
         lo, flo = hi, fhi
         hi = min(hi + 2.0, _Y_MAX)
         fhi = fun(hi)
-    return lo, hi, flo, fhi
+    if flo > 0.0 or fhi < 0.0:
+        return hi, False, 0, (f"could not bracket the contact half-width (residuals "
+                              f"{flo:.2e} at ka = {_angles(lo)[0]:.3e}, {fhi:.2e} at ka = {_angles(hi)[0]:.17g})")
+    y, info = brentq(fun, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200,
+                     full_output=True, disp=False)
+    msg = "partial contact" if info.converged else f"root search did not converge ({info.flag})"
+    return y, info.converged, info.iterations, msg
 
 
 def solve(load, speed, ratio=3.0, hk=1.0):
@@ -298,11 +308,7 @@ def solve(load, speed, ratio=3.0, hk=1.0):
     v = validate(load=load, speed=speed, ratio=ratio, hk=hk)
     load, speed, ratio, hk = v["load"], v["speed"], v["ratio"], v["hk"]
     target = 2.0 * load / hk
-    if speed == 0.0:
-        fc = 1.0
-    else:
-        fc, _ = modulus(speed, ratio)
-    if target >= fc:
+    if target >= modulus(speed, ratio)[0]:
         return _full(load, speed, ratio, hk)
     nfev = [0]
     logt = math.log(target)
@@ -312,24 +318,13 @@ def solve(load, speed, ratio=3.0, hk=1.0):
         return math.log(_state_at(y, speed, ratio).Pbar) - logt
 
     # the effective modulus lies between E0 and E∞: Westergaard bounds the contact
-    lo, hi, flo, fhi = _search(fun, _y_of_sin2(0.5 * target / ratio), _y_of_sin2(min(2.0 * target, 0.999)))
-    if flo > 0.0 or fhi < 0.0:
-        if fhi < 0.0 and hi >= _Y_MAX:  # within rounding of p̃FC: the transition itself
-            return _full(load, speed, ratio, hk, "load within rounding of the full-contact load")
-        st = _state_at(hi, speed, ratio)
-        return _make_partial(st, load, speed, ratio, hk, 0, nfev[0], float(max(abs(flo), abs(fhi))),
-                             False, "could not bracket the contact half-width")
-    try:
-        y, info = brentq(fun, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200,
-                         full_output=True, disp=False)
-        converged, nit = info.converged, info.iterations
-    except (RuntimeError, ValueError) as exc:  # pragma: no cover - reported, never returned as answer
-        st = _state_at(0.5 * (lo + hi), speed, ratio)
-        return _make_partial(st, load, speed, ratio, hk, 0, nfev[0], float("nan"), False, str(exc))
+    y, ok, nit, msg = _find_half_angle(fun, _y_of_sin2(0.5 * target / ratio),
+                                       _y_of_sin2(min(2.0 * target, 0.999)))
     st = _state_at(y, speed, ratio)
-    resid = abs(st.Pbar / target - 1.0)
-    msg = "partial contact" if converged else f"root search did not converge ({info.flag})"
-    return _make_partial(st, load, speed, ratio, hk, nit, nfev[0], resid, converged, msg)
+    if not ok and y >= _Y_MAX and st.Pbar < target:
+        # within rounding of p̃FC: ka = π to double precision, the transition itself
+        return _full(load, speed, ratio, hk, "load within rounding of the full-contact load")
+    return _make_partial(st, load, speed, ratio, hk, nit, nfev[0], abs(st.Pbar / target - 1.0), ok, msg)
 
 
 def solve_penetration(penetration, speed, ratio=3.0, hk=1.0):
@@ -353,16 +348,6 @@ def solve_penetration(penetration, speed, ratio=3.0, hk=1.0):
     s0 = pen
     for _ in range(60):  # invert s(1 − ln s) = Δ/h by fixed point, enough for a bracket
         s0 = pen / (1.0 - math.log(s0))
-    lo, hi, flo, fhi = _search(fun, _y_of_sin2(0.5 * s0), _y_of_sin2(min(2.0 * s0, 0.999)))
-    if flo > 0.0 or fhi < 0.0:
-        st = _state_at(hi, speed, ratio)
-        return _make_partial(st, None, speed, ratio, hk, 0, nfev[0],
-                             float(max(abs(flo), abs(fhi))), False,
-                             "could not bracket the contact half-width")
-    y, info = brentq(fun, lo, hi, xtol=1e-14, rtol=4 * np.finfo(float).eps, maxiter=200,
-                     full_output=True, disp=False)
+    y, ok, nit, msg = _find_half_angle(fun, _y_of_sin2(0.5 * s0), _y_of_sin2(min(2.0 * s0, 0.999)))
     st = _state_at(y, speed, ratio)
-    resid = abs(st.pen / pen - 1.0)
-    msg = "partial contact" if info.converged else f"root search did not converge ({info.flag})"
-    return _make_partial(st, None, speed, ratio, hk, info.iterations, nfev[0], resid,
-                         info.converged, msg)
+    return _make_partial(st, None, speed, ratio, hk, nit, nfev[0], abs(st.pen / pen - 1.0), ok, msg)

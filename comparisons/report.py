@@ -1,0 +1,649 @@
+"""`python -m comparisons report`: the cross-validation report on the paper's parameters.
+
+Both roads are run on E∞/E0 = 3, hk = 1 and overlaid on the paper's figures 3–12 (analytic curves,
+BEM markers), the fields of both roads are compared at a few operating points, and a convergence
+study by mesh refinement measures the BEM's error against the semi-analytic solution, its observed
+order and a Richardson extrapolation.  Every BEM run is its own file in `DIR/results/`, written as
+soon as it is finished (`store.py`), so an interrupted report loses nothing and `--resume` does not
+recompute what is done.  Progress goes to standard error.
+"""
+from __future__ import annotations
+
+import base64
+import datetime
+import html
+import io
+import math
+import os
+import platform
+import sys
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+import analytic
+
+from . import runner
+from .store import Store
+
+RATIO, HK = 3.0, 1.0
+
+
+@dataclass
+class Config:
+    quick: bool
+    nodes: int                      # BEM mesh of the figures and the field comparisons
+    speeds_bem: np.ndarray          # BEM markers along speed sweeps
+    loads_bem: np.ndarray           # BEM markers along load sweeps
+    conv_nodes: list                # meshes of the convergence study
+    workers: int
+
+
+def config(quick, workers=None):
+    w = workers or os.cpu_count() or 1
+    if quick:
+        return Config(True, 1024, np.logspace(-2, 2, 5), np.array([0.1, 0.3, 0.7, 1.1]),
+                      [2 ** n for n in range(8, 13)], w)
+    return Config(False, 4096, np.logspace(-2, 2, 9),
+                  np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1, 1.3]),
+                  [2 ** n for n in range(8, 17)], w)
+
+
+FIG_SPEEDS = [0.01, 1.0, 2.0, 5.0, 10.0, 100.0]          # figures 4–6 (legend of figure 4)
+PROFILE_SPEEDS = [0.01, 0.3, 1.0, 3.0, 100.0]             # figure 3
+FIG7_PEN = [0.5, 0.8, 0.95]
+FIG9_LOADS = [0.6, 0.8, 1.0, 1.2, 1.4]                    # (p̃FC)0 < p̃∞ < (p̃FC)∞
+FIG12_LOADS = [0.1, 0.3, 0.6, 1.0, 1.4, 2.0]
+FIELD_POINTS = [  # (label, load, speed)
+    ("partial contact", 0.3, 1.0),
+    ("near the transition", 0.66, 1.0),
+    ("full contact", 1.0, 1.0),
+]
+SCALAR_EXTRA = [(0.05, 1.0), (0.3, 0.01), (0.3, 100.0), (1.3, 10.0)]  # (load, speed)
+CONV_POINTS = [("partial contact, p̃∞ = 0.3, V/V0 = 1", 0.3, 1.0),
+               ("near the transition, p̃∞ = 0.66, V/V0 = 1", 0.66, 1.0),
+               ("full contact, p̃∞ = 1.0, V/V0 = 1", 1.0, 1.0)]
+
+
+def _bem(load=None, speed=1.0, nodes=4096, penetration=None):
+    return runner.point_spec("bem", float(speed), load=None if load is None else float(load),
+                             penetration=None if penetration is None else float(penetration),
+                             ratio=RATIO, hk=HK, nodes=int(nodes))
+
+
+# ---------------------------------------------------------------------------- the BEM runs
+def bem_runs(cfg):
+    """Every BEM run the report needs: list of (spec, with_fields)."""
+    runs = []
+    N = cfg.nodes
+    for s in PROFILE_SPEEDS:                                              # figure 3
+        runs.append((_bem(0.3, s, N), True))
+        runs.append((_bem(None, s, N, penetration=0.8), True))
+    for s in FIG_SPEEDS:                                                  # figures 4–6
+        for p in cfg.loads_bem:
+            runs.append((_bem(p, s, N), False))
+    for d in FIG7_PEN:                                                    # figure 7
+        for s in cfg.speeds_bem:
+            runs.append((_bem(None, s, N, penetration=d), False))
+    for s in cfg.speeds_bem:                                              # figure 8
+        runs.append((_bem(2.0, s, N), True))
+    for p in sorted(set(FIG9_LOADS + FIG12_LOADS + [0.3])):               # figures 9–12
+        for s in cfg.speeds_bem:
+            runs.append((_bem(p, s, N), False))
+    for _, p, s in FIELD_POINTS:                                          # fields
+        runs.append((_bem(p, s, N), True))
+    for p, s in SCALAR_EXTRA:                                             # scalar table
+        runs.append((_bem(p, s, N), False))
+    for _, p, s in CONV_POINTS:                                           # convergence
+        for n in cfg.conv_nodes:
+            runs.append((_bem(p, s, n), True))
+    # one run per spec; it keeps its fields if any figure needs them
+    merged = {}
+    for spec, f in runs:
+        k = tuple(sorted(spec.items()))
+        merged[k] = (spec, f or merged.get(k, (spec, False))[1])
+    return list(merged.values())
+
+
+def _run_one(job):
+    spec, with_fields = job
+    return spec, with_fields, runner.run(spec, fields=with_fields)
+
+
+def execute(cfg, store, resume):
+    """Run what is missing, in parallel, writing each result as it is done."""
+    jobs = bem_runs(cfg)
+    todo = [j for j in jobs if not (resume and store.has(*j))]
+    # the largest meshes first, so that the long runs overlap the many short ones
+    todo.sort(key=lambda j: -j[0]["nodes"])
+    print(f"report: {len(jobs)} BEM runs, {len(jobs) - len(todo)} already done", file=sys.stderr)
+    t0 = time.monotonic()
+    if todo:
+        if cfg.workers > 1:
+            from concurrent.futures import ProcessPoolExecutor, as_completed
+            with ProcessPoolExecutor(max_workers=cfg.workers) as pool:
+                futs = [pool.submit(_run_one, j) for j in todo]
+                for i, fut in enumerate(as_completed(futs), 1):
+                    spec, f, out = fut.result()
+                    store.put(spec, out, f)
+                    _progress(i, len(todo), t0, spec, out)
+        else:
+            for i, j in enumerate(todo, 1):
+                spec, f, out = _run_one(j)
+                store.put(spec, out, f)
+                _progress(i, len(todo), t0, spec, out)
+    return time.monotonic() - t0
+
+
+def _progress(i, n, t0, spec, out):
+    what = f"load={spec['load']}" if spec["load"] is not None else f"Δ/h={spec['penetration']}"
+    status = "ok" if out["ok"] else "FAILED"
+    print(f"report: [{i}/{n}] bem N={spec['nodes']} {what} V/V0={spec['speed']:.3g} "
+          f"{status} {out['seconds']:.2f} s ({time.monotonic() - t0:.0f} s)", file=sys.stderr)
+
+
+# ---------------------------------------------------------------------------- analytic curves
+def _solve(load=None, speed=1.0, pen=None):
+    sol = analytic.solve(load, speed, RATIO, HK) if pen is None else \
+        analytic.solve_penetration(pen, speed, RATIO, HK)
+    if not sol.success:
+        raise RuntimeError(f"semi-analytic solver failed at load={load}, Δ={pen}, V={speed}: "
+                           f"{sol.message} {sol.residuals}")
+    return sol
+
+
+def _get(store, spec, fields=False):
+    """A BEM record, or None when the run failed (failures are listed in the report)."""
+    doc = store.get(spec, fields)
+    return doc if doc["ok"] else None
+
+
+# ---------------------------------------------------------------------------- figures
+def _style(ax, xlabel, ylabel, title, logx=False):
+    if logx:
+        ax.set_xscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    ax.set_title(title, fontsize=10)
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def _colors(n):
+    import matplotlib.pyplot as plt
+    return plt.cm.viridis(np.linspace(0.0, 0.9, n))
+
+
+def fig3(ax, store, cfg, fixed):
+    """Deformed profile v/h for several V/V0 at p̃∞ = 0.3 (a) or Δ/h = 0.8 (b)."""
+    X = np.linspace(-0.5, 0.5, 801)
+    for c, s in zip(_colors(len(PROFILE_SPEEDS)), PROFILE_SPEEDS):
+        sol = _solve(0.3, s) if fixed == "load" else _solve(None, s, 0.8)
+        ax.plot(X, sol.fields(X).displacement, color=c, lw=1.2, label=f"V/V0 = {s:g}")
+        spec = _bem(0.3, s, cfg.nodes) if fixed == "load" else _bem(None, s, cfg.nodes, penetration=0.8)
+        doc = _get(store, spec, True)
+        if doc:
+            f = doc["fields"]
+            step = max(1, len(f["x_over_lambda"]) // 48)
+            ax.plot(f["x_over_lambda"][::step], f["displacement"][::step], "o", ms=3, color=c, mfc="none")
+    ax.invert_yaxis()  # displacement is positive into the body: draw the surface as seen
+    what = "p̃∞ = 0.3" if fixed == "load" else "Δ/h = 0.8"
+    _style(ax, "x/λ (crest at 0, sliding toward +x)", "v/h (into the body)",
+           f"Figure 3{'a' if fixed == 'load' else 'b'}: deformed profile at {what}")
+    ax.legend(fontsize=7)
+    return ax
+
+
+def _load_sweep(ax, store, cfg, attr, xattr, ylabel, xlabel, title):
+    loads = np.linspace(0.005, 1.6, 160)
+    for c, s in zip(_colors(len(FIG_SPEEDS)), FIG_SPEEDS):
+        sols = [_solve(p, s) for p in loads]
+        xs = [getattr(q, xattr) for q in sols]
+        ys = [getattr(q, attr) for q in sols]
+        ax.plot(xs, ys, color=c, lw=1.2, label=f"V/V0 = {s:g}")
+        pts = [_get(store, _bem(p, s, cfg.nodes)) for p in cfg.loads_bem]
+        pts = [d["record"] for d in pts if d]
+        ax.plot([d[xattr] for d in pts], [d[attr] for d in pts], "o", ms=4, color=c, mfc="none")
+    _style(ax, xlabel, ylabel, title)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def fig4(ax, store, cfg):
+    return _load_sweep(ax, store, cfg, "penetration", "load", "Δ/h", "p̃∞",
+                       "Figure 4: penetration against load")
+
+
+def fig5(ax, store, cfg):
+    return _load_sweep(ax, store, cfg, "ka", "load", "ka", "p̃∞", "Figure 5: contact half-width against load")
+
+
+def fig6(ax, store, cfg):
+    return _load_sweep(ax, store, cfg, "ka", "penetration", "ka", "Δ/h",
+                       "Figure 6: contact half-width against penetration")
+
+
+SPEED_CURVE = np.logspace(-2, 2, 121)
+
+
+def fig7(ax, store, cfg):
+    for c, d in zip(_colors(len(FIG7_PEN)), FIG7_PEN):
+        ax.plot(SPEED_CURVE, [_solve(None, s, d).ka for s in SPEED_CURVE], color=c, lw=1.2,
+                label=f"Δ/h = {d:g}")
+        pts = [_get(store, _bem(None, s, cfg.nodes, penetration=d)) for s in cfg.speeds_bem]
+        ax.plot([p["record"]["speed"] for p in pts if p], [p["record"]["ka"] for p in pts if p],
+                "o", ms=4, color=c, mfc="none")
+    _style(ax, "V/V0", "ka", "Figure 7: contact half-width against speed at fixed penetration", logx=True)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def fig8(ax, store, cfg):
+    ax.plot(SPEED_CURVE, [analytic.transition_load(s, RATIO, HK) for s in SPEED_CURVE], "k-",
+            lw=1.2, label="semi-analytic |E(kV)| hk/(2E0)")
+    xs, ys = [], []
+    for s in cfg.speeds_bem:  # BEM: in full contact p̃FC = p̃∞ − min σ (the problem is linear)
+        doc = _get(store, _bem(2.0, s, cfg.nodes), True)
+        if doc and doc["record"]["full_contact"]:
+            xs.append(s)
+            ys.append(2.0 - float(np.min(doc["fields"]["pressure"])))
+    ax.plot(xs, ys, "o", ms=5, mfc="none", color="C3", label="BEM (p̃∞ − min σ at p̃∞ = 2)")
+    ax.axhline(0.5 * HK, ls=":", color="0.5")
+    ax.axhline(0.5 * HK * RATIO, ls=":", color="0.5")
+    _style(ax, "V/V0", "p̃FC", "Figure 8: full-contact load against speed", logx=True)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def _speed_sweep(ax, store, cfg, loads, attr, ylabel, title, marker="o", label_fmt="p̃∞ = {:g}"):
+    for c, p in zip(_colors(len(loads)), loads):
+        sols = [_solve(p, s) for s in SPEED_CURVE]
+        ys = [getattr(q, attr) for q in sols]
+        ys = [np.nan if y is None else y for y in ys]
+        ax.plot(SPEED_CURVE, ys, color=c, lw=1.2, label=label_fmt.format(p))
+        pts = [_get(store, _bem(p, s, cfg.nodes)) for s in cfg.speeds_bem]
+        pts = [d["record"] for d in pts if d and d["record"][attr] is not None]
+        ax.plot([d["speed"] for d in pts], [d[attr] for d in pts], marker, ms=4, color=c, mfc="none")
+    _style(ax, "V/V0", ylabel, title, logx=True)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def fig9(ax, store, cfg):
+    return _speed_sweep(ax, store, cfg, FIG9_LOADS, "ka", "ka",
+                        "Figure 9: contact half-width across the transition")
+
+
+def _ecc(ax, store, cfg, load, title):
+    sols = [_solve(load, s) for s in SPEED_CURVE]
+    ax.plot(SPEED_CURVE, [np.nan if q.ke is None else q.ke for q in sols], "C0-", lw=1.2, label="ke")
+    ax.plot(SPEED_CURVE, [q.ke_hat for q in sols], "C3--", lw=1.2, label="kê")
+    pts = [_get(store, _bem(load, s, cfg.nodes)) for s in cfg.speeds_bem]
+    pts = [d["record"] for d in pts if d]
+    ax.plot([d["speed"] for d in pts if d["ke"] is not None], [d["ke"] for d in pts if d["ke"] is not None],
+            "o", ms=4, color="C0", mfc="none", label="BEM ke")
+    ax.plot([d["speed"] for d in pts], [d["ke_hat"] for d in pts], "s", ms=4, color="C3", mfc="none",
+            label="BEM kê")
+    vth = analytic.threshold_speed(load, RATIO, HK)
+    if 0 < vth < math.inf:
+        ax.axvline(vth, ls=":", color="0.5")
+    _style(ax, "V/V0", "ke, kê", title, logx=True)
+    ax.legend(fontsize=7)
+    return ax
+
+
+def fig10(ax, store, cfg):
+    return _ecc(ax, store, cfg, 0.3, "Figure 10: eccentricities at p̃∞ = 0.3 (partial contact)")
+
+
+def fig11(ax, store, cfg):
+    return _ecc(ax, store, cfg, 1.0, "Figure 11: eccentricities at p̃∞ = 1.0 (transition at the dotted line)")
+
+
+def fig12(ax, store, cfg):
+    return _speed_sweep(ax, store, cfg, FIG12_LOADS, "mu", "μ", "Figure 12: friction coefficient against speed")
+
+
+FIGURES = [("fig03a", lambda ax, s, c: fig3(ax, s, c, "load")),
+           ("fig03b", lambda ax, s, c: fig3(ax, s, c, "penetration")),
+           ("fig04", fig4), ("fig05", fig5), ("fig06", fig6), ("fig07", fig7), ("fig08", fig8),
+           ("fig09", fig9), ("fig10", fig10), ("fig11", fig11), ("fig12", fig12)]
+
+
+# ---------------------------------------------------------------------------- fields & scalars
+def field_comparison(store, cfg):
+    """Per field point: (label, load, speed, analytic solution, BEM doc, norms)."""
+    rows = []
+    for label, p, s in FIELD_POINTS:
+        sol = _solve(p, s)
+        doc = _get(store, _bem(p, s, cfg.nodes), True)
+        norms = None
+        if doc:
+            f = doc["fields"]
+            a = sol.fields(f["x_over_lambda"])
+            dp = f["pressure"] - a.pressure
+            dv = f["displacement"] - a.displacement
+            pmax = np.max(np.abs(a.pressure))
+            norms = {"pressure_L2": float(np.sqrt(np.mean(dp ** 2)) / pmax),
+                     "pressure_Linf": float(np.max(np.abs(dp)) / pmax),
+                     "displacement_L2": float(np.sqrt(np.mean(dv ** 2))),
+                     "displacement_Linf": float(np.max(np.abs(dv)))}
+        rows.append((label, p, s, sol, doc, norms))
+    return rows
+
+
+def plot_fields(fig, rows):
+    axes = fig.subplots(2, len(rows), sharex=True)
+    for j, (label, p, s, sol, doc, norms) in enumerate(rows):
+        X = np.linspace(-0.5, 0.5, 1001)
+        af = sol.fields(X)
+        top, bot = axes[0, j], axes[1, j]
+        top.plot(X, af.pressure, "k-", lw=1.0, label="semi-analytic σ")
+        twin = top.twinx()
+        twin.plot(X, af.displacement, "C0-", lw=1.0)
+        twin.set_ylabel("v/h", color="C0", fontsize=8)
+        if doc:
+            f = doc["fields"]
+            step = max(1, len(f["x_over_lambda"]) // 64)
+            top.plot(f["x_over_lambda"][::step], f["pressure"][::step], "o", ms=3, mfc="none", color="C3",
+                     label="BEM σ")
+            twin.plot(f["x_over_lambda"][::step], f["displacement"][::step], "s", ms=2.5, mfc="none", color="C0")
+            a = sol.fields(f["x_over_lambda"])
+            bot.plot(f["x_over_lambda"], f["pressure"] - a.pressure, "C3-", lw=0.8, label="Δσ")
+            bot.plot(f["x_over_lambda"], f["displacement"] - a.displacement, "C0-", lw=0.8, label="Δv/h")
+            bot.set_title(f"L∞: σ {norms['pressure_Linf']:.1e}·max σ, v {norms['displacement_Linf']:.1e}·h", fontsize=8)
+        top.set_title(f"{label}\np̃∞ = {p:g}, V/V0 = {s:g}", fontsize=9)
+        top.set_ylabel("σ(1 − ν²)/E0", fontsize=8)
+        bot.set_xlabel("x/λ")
+        bot.set_ylabel("BEM − semi-analytic", fontsize=8)
+        top.legend(fontsize=7, loc="upper left")
+        bot.legend(fontsize=7)
+        for a_ in (top, bot):
+            a_.grid(True, alpha=0.3)
+    return fig
+
+
+SCALARS = ["ka", "ke", "ke_hat", "penetration", "mu"]
+
+
+def scalar_table(store, cfg):
+    labels = ["light load", "low speed", "high speed", "transition at high speed"]
+    pts = [(lbl, p, s) for lbl, p, s in FIELD_POINTS] + \
+          [(lbl, p, s) for lbl, (p, s) in zip(labels, SCALAR_EXTRA)]
+    rows = []
+    for lbl, p, s in pts:
+        doc = _get(store, _bem(p, s, cfg.nodes))
+        rows.append((lbl, p, s, _solve(p, s).as_dict(), doc["record"] if doc else None))
+    return rows
+
+
+# ---------------------------------------------------------------------------- convergence
+def fit_order(N, err):
+    """Observed order p from a least-squares fit of log err = c − p log N."""
+    N, err = np.asarray(N, float), np.asarray(err, float)
+    ok = err > 0
+    if ok.sum() < 2:
+        return float("nan")
+    return float(-np.polyfit(np.log(N[ok]), np.log(err[ok]), 1)[0])
+
+
+def richardson(N, values, order):
+    """Extrapolate the last two meshes assuming error ∝ N^(−order) (mesh ratio 2)."""
+    if not math.isfinite(order) or len(values) < 2:
+        return float("nan")
+    r = 2.0 ** order
+    return float((r * values[-1] - values[-2]) / (r - 1.0))
+
+
+def convergence(store, cfg):
+    """Errors of the BEM against the semi-analytic solution for each convergence point."""
+    out = []
+    for label, p, s in CONV_POINTS:
+        sol = _solve(p, s)
+        ref = sol.as_dict()
+        data = {"N": [], "ka": [], "ke": [], "penetration": [], "mu": [], "pressure": []}
+        vals = {k: [] for k in ("ka", "ke", "penetration", "mu")}
+        for n in cfg.conv_nodes:
+            doc = _get(store, _bem(p, s, n), True)
+            if not doc:
+                continue
+            rec = doc["record"]
+            data["N"].append(n)
+            for k in vals:
+                v = rec[k]
+                vals[k].append(np.nan if v is None else v)
+                data[k].append(np.nan if (v is None or ref[k] is None) else abs(v - ref[k]))
+            f = doc["fields"]
+            a = sol.fields(f["x_over_lambda"]).pressure
+            data["pressure"].append(float(np.sqrt(np.mean((f["pressure"] - a) ** 2)) / np.max(np.abs(a))))
+        orders = {k: fit_order(data["N"][-5:], data[k][-5:]) for k in ("ka", "ke", "penetration", "mu", "pressure")}
+        extrap = {k: richardson(data["N"], vals[k], orders[k]) for k in vals}
+        out.append({"label": label, "load": p, "speed": s, "ref": ref, "data": data, "values": vals,
+                    "orders": orders, "extrapolated": extrap})
+    return out
+
+
+def plot_convergence(fig, conv):
+    axes = fig.subplots(1, len(conv))
+    for ax, c in zip(np.atleast_1d(axes), conv):
+        N = np.array(c["data"]["N"], float)
+        for k, m in zip(("ka", "ke", "penetration", "mu", "pressure"), "os^dv"):
+            e = np.array(c["data"][k], float)
+            if np.all(~np.isfinite(e)) or not np.any(e > 0):
+                continue
+            lab = {"ka": "ka", "ke": "ke", "penetration": "Δ/h", "mu": "μ", "pressure": "σ (rel. L2)"}[k]
+            ax.loglog(N, e, m + "-", ms=4, mfc="none", label=f"{lab}: p = {c['orders'][k]:.2f}")
+        for p_, ls in ((1, ":"), (2, "--")):
+            ax.loglog(N, (N / N[0]) ** (-p_) * 1e-2, "k" + ls, lw=0.6, alpha=0.5)
+        ax.set_title(c["label"], fontsize=8)
+        ax.set_xlabel("N (panels per period)")
+        ax.set_ylabel("|BEM − semi-analytic|")
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6)
+    return fig
+
+
+# ---------------------------------------------------------------------------- writing
+@dataclass
+class Doc:
+    parts: list = field(default_factory=list)  # ("h", level, text) | ("p", text) | ("table", head, rows) | ("img", file, caption)
+
+    def h(self, level, text):
+        self.parts.append(("h", level, text))
+
+    def p(self, text):
+        self.parts.append(("p", text))
+
+    def table(self, head, rows):
+        self.parts.append(("table", head, rows))
+
+    def img(self, name, caption):
+        self.parts.append(("img", name, caption))
+
+    def markdown(self):
+        out = []
+        for part in self.parts:
+            if part[0] == "h":
+                out.append("#" * part[1] + " " + part[2] + "\n")
+            elif part[0] == "p":
+                out.append(part[1] + "\n")
+            elif part[0] == "table":
+                out.append("| " + " | ".join(part[1]) + " |")
+                out.append("|" + "---|" * len(part[1]))
+                out.extend("| " + " | ".join(r) + " |" for r in part[2])
+                out.append("")
+            else:
+                out.append(f"![{part[2]}]({part[1]})\n")
+        return "\n".join(out)
+
+    def html(self, folder):
+        body = []
+        for part in self.parts:
+            if part[0] == "h":
+                body.append(f"<h{part[1]}>{html.escape(part[2])}</h{part[1]}>")
+            elif part[0] == "p":
+                body.append(f"<p>{html.escape(part[1])}</p>")
+            elif part[0] == "table":
+                head = "".join(f"<th>{html.escape(c)}</th>" for c in part[1])
+                rows = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>" for r in part[2])
+                body.append(f"<table><tr>{head}</tr>{rows}</table>")
+            else:
+                with open(os.path.join(folder, part[1]), "rb") as fh:
+                    data = base64.b64encode(fh.read()).decode()
+                body.append(f'<figure><img src="data:image/png;base64,{data}" alt="{html.escape(part[2])}">'
+                            f"<figcaption>{html.escape(part[2])}</figcaption></figure>")
+        style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
+                 "table{border-collapse:collapse;font-size:0.85em;margin:1em 0}"
+                 "td,th{border:1px solid #bbb;padding:2px 6px;text-align:right}"
+                 "img{max-width:100%}figcaption{font-size:0.85em;color:#444}")
+        return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>viscosine cross-validation</title>"
+                f"<style>{style}</style></head><body>{''.join(body)}</body></html>")
+
+
+def _fmt(v, digits=6):
+    if v is None:
+        return "—"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, float) and not math.isfinite(v):
+        return "—"
+    return f"{v:.{digits}g}"
+
+
+def _reldiff(a, b):
+    if a is None or b is None:
+        return "—"
+    return f"{abs(a - b) / max(abs(b), 1e-300):.2e}"
+
+
+def _versions():
+    import matplotlib
+    import numba
+    import scipy
+    try:
+        from importlib.metadata import version
+        vis = version("viscosine")
+    except Exception:  # pragma: no cover - running from a source tree without install
+        vis = "source tree"
+    return {"viscosine": vis, "python": platform.python_version(), "numpy": np.__version__,
+            "scipy": scipy.__version__, "numba": numba.__version__, "matplotlib": matplotlib.__version__}
+
+
+def write_report(folder, store, cfg, timings, failures):
+    """Write the figures, report.md and report.html; `timings` gains the time spent here."""
+    t_start = time.monotonic()
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    doc = Doc()
+    doc.h(1, "viscosine: cross-validation report")
+    doc.p(f"Steady sliding of a rigid sinusoid over a standard linear solid, E∞/E0 = {RATIO:g}, hk = {HK:g} "
+          f"(the paper's parameters). Lines: semi-analytic road (`analytic/`, Hunter's transformation and "
+          f"the closure (2.14)–(2.15)). Markers: boundary-element road (`bem/`, eq. 2.5 discretised "
+          f"directly, N = {cfg.nodes} panels per period). {'Quick run (coarser meshes, fewer points).' if cfg.quick else ''}")
+    if failures:
+        doc.h(2, "Runs that did not converge")
+        doc.p("These operating points are missing from the figures and tables below; they were not reported as results.")
+        doc.table(["spec", "error"], [[str(s), e] for s, e in failures])
+    doc.h(2, "The paper's figures, both roads")
+    for name, fn in FIGURES:
+        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        fn(ax, store, cfg)
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, f"{name}.png"), dpi=110)
+        plt.close(fig)
+        doc.img(f"{name}.png", ax.get_title() + f" (E∞/E0 = {RATIO:g}, hk = {HK:g}; BEM N = {cfg.nodes})")
+
+    doc.h(2, "Fields: σ(x) and v(x) from both roads")
+    rows = field_comparison(store, cfg)
+    fig = plt.figure(figsize=(4.2 * len(rows), 6.0))
+    plot_fields(fig, rows)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "fields.png"), dpi=110)
+    plt.close(fig)
+    doc.img("fields.png", f"Pressure and displacement, BEM (markers, N = {cfg.nodes}) and semi-analytic (lines); "
+                          "bottom: BEM − semi-analytic at the BEM collocation points")
+    doc.table(["operating point", "p̃∞", "V/V0", "σ: L2 / max σ", "σ: L∞ / max σ", "v: L2 / h", "v: L∞ / h"],
+              [[lbl, _fmt(p), _fmt(s)] + ([f"{n['pressure_L2']:.2e}", f"{n['pressure_Linf']:.2e}",
+                                           f"{n['displacement_L2']:.2e}", f"{n['displacement_Linf']:.2e}"]
+                                          if n else ["—"] * 4)
+               for lbl, p, s, _, _, n in rows])
+
+    doc.h(2, "Scalars from both roads")
+    trows = []
+    for lbl, p, s, a, b in scalar_table(store, cfg):
+        for k in SCALARS:
+            av = a[k]
+            bv = None if b is None else b[k]
+            diff = "—" if (av is None or bv is None) else (
+                f"{abs(av - bv):.2e}" if k in ("ke", "ke_hat", "ka") else _reldiff(bv, av))
+            trows.append([lbl, _fmt(p), _fmt(s), k, _fmt(av, 10), _fmt(bv, 10), diff])
+    doc.p("Differences: absolute for ka, ke, kê; relative for Δ/h and μ. BEM at N = "
+          f"{cfg.nodes}.")
+    doc.table(["operating point", "p̃∞", "V/V0", "quantity", "semi-analytic", "BEM", "difference"], trows)
+
+    doc.h(2, "Convergence of the BEM by mesh refinement")
+    conv = convergence(store, cfg)
+    fig = plt.figure(figsize=(4.6 * len(conv), 4.2))
+    plot_convergence(fig, conv)
+    fig.tight_layout()
+    fig.savefig(os.path.join(folder, "convergence.png"), dpi=110)
+    plt.close(fig)
+    doc.img("convergence.png", "Error of the BEM against the semi-analytic solution; observed orders p from a "
+                               "log–log fit over the finest five meshes (dotted: N⁻¹, dashed: N⁻²)")
+    for c in conv:
+        doc.h(3, c["label"])
+        head = ["N", "ka error", "ke error", "Δ/h error", "μ error", "σ rel. L2 error"]
+        rows_ = []
+        for i, n in enumerate(c["data"]["N"]):
+            rows_.append([str(n)] + [_fmt(c["data"][k][i], 3) for k in ("ka", "ke", "penetration", "mu", "pressure")])
+        rows_.append(["observed order"] + [_fmt(c["orders"][k], 3) for k in ("ka", "ke", "penetration", "mu", "pressure")])
+        doc.table(head, rows_)
+        doc.table(["quantity", "semi-analytic", "BEM finest", "Richardson", "|Richardson − semi-analytic|"],
+                  [[k, _fmt(c["ref"][k], 12), _fmt(c["values"][k][-1] if c["values"][k] else None, 12),
+                    _fmt(c["extrapolated"][k], 12),
+                    "—" if c["ref"][k] is None or not math.isfinite(c["extrapolated"][k])
+                    else f"{abs(c['extrapolated'][k] - c['ref'][k]):.2e}"]
+                   for k in ("ka", "ke", "penetration", "mu")])
+
+    doc.h(2, "Provenance")
+    ver = _versions()
+    doc.table(["item", "value"],
+              [["date (UTC)", datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S")],
+               ["parameters", f"E∞/E0 = {RATIO:g}, hk = {HK:g}, ν enters only through p̃∞ and τ̃f"],
+               ["BEM mesh (figures, fields, scalars)", str(cfg.nodes)],
+               ["BEM meshes (convergence)", ", ".join(str(n) for n in cfg.conv_nodes)],
+               ["mode", "quick" if cfg.quick else "full"],
+               ["processes", str(cfg.workers)],
+               ["machine", f"{platform.machine()}, {os.cpu_count()} cores, {platform.system()}"]]
+              + [[k, v] for k, v in ver.items()]
+              + [[f"time: {k}", f"{v:.1f} s"] for k, v in
+                 (timings | {"figures and tables": time.monotonic() - t_start}).items()])
+    md = doc.markdown()
+    _atomic_write(os.path.join(folder, "report.md"), md)
+    _atomic_write(os.path.join(folder, "report.html"), doc.html(folder))
+    return conv
+
+
+def _atomic_write(path, text):
+    tmp = path + ".part"
+    with open(tmp, "w") as fh:
+        fh.write(text)
+    os.replace(tmp, path)
+
+
+def main(args):
+    t0 = time.monotonic()
+    cfg = config(args.quick, args.workers)
+    os.makedirs(args.out, exist_ok=True)
+    store = Store(os.path.join(args.out, "results"))
+    timings = {"BEM runs": execute(cfg, store, args.resume)}
+    failures = [(spec, doc["error"]) for spec, _ in bem_runs(cfg)
+                for doc in [store.get(spec)] if not doc["ok"]]
+    print("report: figures and tables", file=sys.stderr)
+    write_report(args.out, store, cfg, timings, failures)
+    print(f"report: wrote {os.path.join(args.out, 'report.md')} and report.html in "
+          f"{time.monotonic() - t0:.0f} s", file=sys.stderr)
+    return 1 if failures else 0
