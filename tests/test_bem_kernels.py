@@ -1,0 +1,150 @@
+"""Each numba kernel of bem/_kernels.py against a plain NumPy / SciPy twin."""
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy import integrate, special
+
+from bem import _kernels
+from bem._influence import exp_weight_rule, memory_coefficients
+
+# Tolerances (what each one measures):
+#: absolute error of Cl2 (|Cl2| <= 1.015): a few ulp of the series plus the quad twin
+TOL_CL2 = 2e-15
+#: error of a panel value relative to the largest panel value at that N (round-off)
+TOL_PANEL = 1e-14
+#: relative error of a quadrature rule's moments (round-off of the rule's construction)
+TOL_RULE = 1e-13
+#: agreement of a compiled loop with its NumPy twin (same arithmetic, other order)
+TOL_LOOP = 1e-13
+
+
+def _cl2_quad(theta):
+    """Cl2(theta) = -int_0^theta log|2 sin(t/2)| dt, for theta in [-2 pi, 2 pi]."""
+    f = lambda t: -np.log(abs(2.0 * np.sin(t / 2.0)))  # noqa: E731
+    pts = [p for p in (-2 * np.pi, 0.0, 2 * np.pi) if min(0, theta) < p < max(0, theta)]
+    val, _ = integrate.quad(f, 0.0, theta, points=pts or None, epsabs=1e-16, epsrel=1e-15,
+                            limit=200)
+    return val
+
+
+def test_cl2_against_quadrature_and_symmetries():
+    thetas = np.concatenate([np.linspace(-6.2, 6.2, 61), [1e-8, 1e-3, np.pi, 2.5, 3.1]])
+    got = np.empty_like(thetas)
+    _kernels.cl2_array(thetas, got)
+    ref = np.array([_cl2_quad(t) for t in thetas])
+    assert np.max(np.abs(got - ref)) < TOL_CL2
+    # odd, 2 pi periodic, Cl2(pi/2) = Catalan's constant
+    assert _kernels.cl2(-0.7) == -_kernels.cl2(0.7)
+    assert abs(_kernels.cl2(0.7 + 2 * np.pi) - _kernels.cl2(0.7)) < TOL_CL2
+    assert abs(_kernels.cl2(np.pi / 2) - 0.915965594177219015054603514932) < TOL_CL2
+
+
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
+@pytest.mark.parametrize("nodes", [8, 64, 4096])
+def test_panel_values_against_quadrature_of_green_function(nodes):
+    """(2/pi)[Cl2] difference = -(2/pi) int_panel 2 pi log|2 sin(pi(X - u))| du (eq. 2.2)."""
+    h = 1.0 / nodes
+    xs = np.array([0.0, 0.3 * h, h, 1.5 * h, 2 * h, 3.7 * h, 0.1, 0.25, 0.4999, 0.5, -0.2])
+    got = np.empty_like(xs)
+    _kernels.panel_values(xs, nodes, got)
+    ref = []
+    for x in xs:
+        f = lambda u: -2.0 * np.log(abs(2.0 * np.sin(np.pi * (x - u)))) * 2.0  # noqa: E731
+        lo, hi = -h / 2, h / 2
+        pts = [p for p in (x, x - 1.0, x + 1.0) if lo < p < hi]
+        val, _ = integrate.quad(f, lo, hi, points=pts or None, epsabs=1e-17, epsrel=1e-14,
+                                limit=200)
+        ref.append(val)
+    ref = np.array(ref)
+    scale = got[0]
+    assert np.max(np.abs(got - ref)) / scale < TOL_PANEL
+
+
+def test_cl2_difference_series_matches_direct_difference_where_that_is_safe():
+    # where delta is not small the direct difference has no cancellation to speak of
+    for delta in (0.3, 0.1):
+        for theta in np.linspace(0.95, 5.3, 23):
+            direct = _kernels.cl2(theta + delta) - _kernels.cl2(theta - delta)
+            assert abs(_kernels.cl2_difference(theta, delta) - direct) < 4 * TOL_CL2
+
+
+def test_exponential_recursion_against_dense_sum():
+    """E_m = sum_(q>=0) e^(-a q) S_(m+q) = sum_(q<n) e^(-a q) S_(m+q) / (1 - e^(-a n))."""
+    rng = np.random.default_rng(1)
+    for n, a in ((8, 0.3), (37, 1e-4), (64, 5.0), (16, 80.0)):
+        src = rng.standard_normal(n)
+        got = np.empty(n)
+        _kernels.exponential_recursion(src, a, got)
+        q = np.arange(n)
+        ref = np.array([np.sum(np.exp(-a * q) * src[(m + q) % n]) for m in range(n)])
+        ref /= -np.expm1(-a * n)
+        assert np.max(np.abs(got - ref)) < TOL_LOOP * np.sum(np.abs(ref))
+
+
+@pytest.mark.parametrize("a", [0.0, 1e-3, 0.7, 9.0, 60.0, 119.0, 121.0, 5e3])
+def test_exp_weight_rule_integrates_polynomials_exactly(a):
+    n = 16
+    t, w = exp_weight_rule(a, n)
+    assert np.all((t > 0) & (t < 1)) and np.all(w > 0)
+    for k in (0, 1, 5, 2 * n - 1):
+        # int_0^1 e^(-a t) t^k dt = k! P(k+1, a) / a^(k+1)  (regularised incomplete gamma)
+        if a == 0.0:
+            ref = 1.0 / (k + 1)
+        else:
+            ref = special.gammainc(k + 1, a) * special.gamma(k + 1) / a ** (k + 1)
+        assert abs(np.dot(w, t**k) - ref) <= TOL_RULE * ref
+
+
+def test_memory_sources_against_numpy_twin():
+    """Source integrals against a dense composite Gauss-Legendre twin in NumPy
+    (40 x 30 points with the exponential in the weights)."""
+    nodes, length = 16, 0.02
+    a = (1.0 / nodes) / length
+    t_n, w_n = exp_weight_rule(a, 16)
+    t_f, w_f = exp_weight_rule(a, 9)
+    got = np.zeros(nodes)
+    _kernels.memory_sources(nodes, t_n, w_n, t_f, w_f, 2, got)
+    g, gw = np.polynomial.legendre.leggauss(30)
+    edges = np.linspace(0.0, 1.0, 41)
+    tt = (0.5 * (edges[1:] + edges[:-1])[:, None] + 0.5 * np.diff(edges)[:, None] * g).ravel()
+    ww = (0.5 * np.diff(edges)[:, None] * gw).ravel() * np.exp(-a * tt)
+    for m in range(1, nodes - 1):
+        mm = m if m <= nodes // 2 else m - nodes
+        full = np.empty_like(tt)
+        _kernels.panel_values((mm + tt) / nodes, nodes, full)  # checked against quad above
+        assert abs(got[m] - np.dot(ww, full)) < TOL_LOOP * abs(full).max()
+
+
+def test_memory_coefficients_tend_to_relaxed_and_to_zero():
+    nodes = 64
+    base = np.empty(nodes)
+    m = np.arange(nodes)
+    _kernels.panel_values(np.where(m <= nodes // 2, m, m - nodes) / nodes, nodes, base)
+    slow = memory_coefficients(nodes, 1e-9)  # L << panel: relaxed response, same place
+    assert np.max(np.abs(slow - base)) < 1e-6 * np.max(base)
+    prev = None
+    for length in (1e3, 1e4, 1e5):  # L >> wavelength: vanishes like 1/L
+        mem = memory_coefficients(nodes, length)
+        if prev is not None:
+            assert abs(np.max(np.abs(prev)) / np.max(np.abs(mem)) - 10.0) < 1e-2
+        prev = mem
+
+
+def test_update_active_set_and_residuals_against_numpy():
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        n = 50
+        active = rng.random(n) < 0.5
+        p = rng.standard_normal(n) * active
+        g = rng.standard_normal(n) * ~active
+        out = np.empty(n, np.bool_)
+        changed = _kernels.update_active_set(active, p, g, out)
+        ref = np.where(active, p > 0, g < 0)
+        assert np.array_equal(out, ref) and changed == int(np.sum(ref != active))
+        res = np.empty(4)
+        g2 = g + 1e-3 * rng.standard_normal(n)
+        _kernels.contact_residuals(active, p, g2, res)
+        ref = [np.max(np.abs(p * g2)), np.max(np.abs(g2[active])) if active.any() else 0.0,
+               max(0.0, -g2.min()), max(0.0, -p.min())]
+        assert np.allclose(res, ref, rtol=0, atol=0)
