@@ -71,8 +71,8 @@ class BemResult:
         ``complementarity`` max |sigma gap| (sigma in E*, gap over h);
         ``contact_gap`` max |gap|/h on the active set; ``interpenetration``
         max(0, -min gap)/h; ``negative_pressure`` max(0, -min sigma)/max sigma;
-        ``load_balance`` |mean sigma - load|/load; ``krylov`` relative residual of
-        the last linear solve; ``friction_mismatch`` relative difference between
+        ``load_balance`` |mean sigma - load|/load; ``krylov`` 2-norm of the residual of
+        the last linear solve over h k; ``friction_mismatch`` relative difference between
         the two estimates of tau_f (dissipation and direct), a discretisation
         indicator, not a convergence residual.
     levels : tuple of (nodes, nit, inner iterations)

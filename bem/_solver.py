@@ -49,6 +49,7 @@ class _Grid:
         y = profile.sample(nodes)
         self.y = y - y.mean()  # rounding only: samples have zero mean
         self.slope = profile.slope(nodes)
+        self.amp = float(profile.amplitude)
 
 
 def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
@@ -81,6 +82,7 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
             return out
 
         def precond(r):
+            # block elimination of s with P = R C^+ R^T in place of C_AA^-1
             u = pinv(r[:na])
             t = (u.sum() / n - r[na]) / beta
             out = np.empty(na + 1)
@@ -97,7 +99,8 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
 
         precond = pinv
         b = grid.y[idx] - sep
-    z, its, relres, ok = gmres(matvec, precond, b, x0, tol, restart, max_inner)
+    # tol bounds every entry of the residual: gaps (k v) on A and the load equation
+    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.amp, restart, max_inner)
     sigma = np.zeros(n)
     sigma[idx] = z[:na]
     s = z[na] if load is not None else sep
@@ -138,7 +141,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             inner.append(its)
         gap = grid.op.apply(sigma) - grid.y + s
         if not ok:
-            status, message = 2, f"Krylov solve did not reach tol (relative residual {relres:.3e})"
+            status, message = 2, f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
             break
         changed = _kernels.update_active_set(active, sigma, gap, new)
         if changed == 0:
@@ -361,7 +364,9 @@ def solve(profile, material, speed, nodes, *, load=None, penetration=None, tol=1
         the contact is full and the load is not unique: the smallest one (the
         full-contact threshold) is returned.
     tol : float
-        Relative residual of the Krylov solves (default 1e-10).
+        Bound on the 2-norm of the residual of each Krylov solve, relative to the
+        amplitude h k (so on every gap on the contact, in units of h, and on the
+        load equation); default 1e-10.
     max_outer : int
         Active-set iterations per grid.
     nested : bool
@@ -467,7 +472,7 @@ def _build_result(res, grid: _Grid, profile, material, speed, amp, load, history
         "interpenetration": float(out[2]) / amp,
         "negative_pressure": float(out[3]) / smax if smax > 0 else float(out[3]),
         "load_balance": abs(mean_p - target) / target if target > 0 else abs(mean_p),
-        "krylov": float(res["relres"]),
+        "krylov": float(res["relres"]) / amp,
         "friction_mismatch": abs(tau_direct - tau_f) / abs(tau_f) if tau_f != 0 else 0.0,
     }
     full = bool(active.all())
