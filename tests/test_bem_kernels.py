@@ -28,6 +28,7 @@ def _cl2_quad(theta):
     return val
 
 
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
 def test_cl2_against_quadrature_and_symmetries():
     thetas = np.concatenate([np.linspace(-6.2, 6.2, 61), [1e-8, 1e-3, np.pi, 2.5, 3.1]])
     got = np.empty_like(thetas)
