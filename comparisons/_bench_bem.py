@@ -1,0 +1,196 @@
+"""Benchmark tables of the BEM road (issue 3): accuracy, iterations, time, memory.
+
+Run as ``python -m comparisons bench-bem`` or
+``python -c "from comparisons._bench_bem import main; main()"``.  Tables go to
+standard output, progress to standard error.  Parameters: standard linear solid
+with E_inf/E0 = 3, hk = 1 (conventions.md); every table states its own.
+"""
+from __future__ import annotations
+
+import argparse
+import math
+import platform
+import resource
+import sys
+import time
+import tracemalloc
+
+import numpy as np
+
+import bem
+
+
+def _progress(msg: str) -> None:
+    print(msg, file=sys.stderr, flush=True)
+
+
+def _westergaard(load: float, hk: float, modulus: float) -> dict:
+    """Westergaard (1939): load/p* = sin^2(pi a/lambda), p* = E* k h/2 (modulus E/E0),
+    peak 2 load/sin(pi a/lambda), Delta/h = (load/p*)(1 - ln(load/p*))."""
+    r = load / (modulus * hk / 2.0)
+    psi = math.asin(math.sqrt(r))
+    return {"ka": 2.0 * psi, "penetration": r * (1.0 - math.log(r)),
+            "peak": 2.0 * load / math.sin(psi)}
+
+
+def _appendix_b_mu(mat: bem.Prony, speed: float, load: float, hk: float) -> tuple:
+    """Full contact (Appendix B, signs of conventions.md): mu and k e_hat = arg J*(1)."""
+    js = complex(mat.jstar(1, speed))
+    tau_f = hk**2 * js.imag / (4.0 * abs(js) ** 2)
+    return tau_f / load, math.atan2(js.imag, js.real)
+
+
+def _order(n1, e1, n2, e2):
+    if e1 <= 0 or e2 <= 0:
+        return float("nan")
+    return math.log(e1 / e2) / math.log(n2 / n1)
+
+
+def table_elastic_limits(exponents, load, out) -> None:
+    mat = bem.Prony.standard_linear_solid(3.0)
+    print(f"\n## Elastic limits against Westergaard (SLS ratio 3, hk 1, load {load})", file=out)
+    print("errors |BEM - Westergaard|; order = log2 of the error ratio to the previous N; "
+          "fit = least-squares slope over all N", file=out)
+    for speed, modulus in ((1e-6, 1.0), (1e6, 3.0)):
+        ref = _westergaard(load, 1.0, modulus)
+        print(f"\nspeed {speed:g} (modulus E{'0' if modulus == 1 else '_inf'}):  ka = {ref['ka']:.12f},"
+              f" Delta/h = {ref['penetration']:.12f}, peak = {ref['peak']:.12f}", file=out)
+        print(f"{'N':>8} {'err ka':>10} {'order':>6} {'err Delta/h':>12} {'order':>6} "
+              f"{'err peak':>10} {'order':>6} {'nit':>4} {'inner (finest)':>16}", file=out)
+        rows = []
+        for e in exponents:
+            n = 2**e
+            _progress(f"elastic limit speed {speed:g} N {n}")
+            r = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load)
+            if not r.success:
+                print(f"{n:>8} NOT CONVERGED: {r.message}", file=out)
+                continue
+            err = (abs(r.ka - ref["ka"]), abs(r.penetration - ref["penetration"]),
+                   abs(float(r.pressure.max()) - ref["peak"]))
+            orders = ["" for _ in err]
+            if rows:
+                orders = [f"{_order(rows[-1][0], rows[-1][1][i], n, err[i]):6.2f}" for i in range(3)]
+            rows.append((n, err))
+            print(f"{n:>8} {err[0]:10.2e} {orders[0]:>6} {err[1]:12.2e} {orders[1]:>6} "
+                  f"{err[2]:10.2e} {orders[2]:>6} {r.nit:>4} {str(r.inner_iterations):>16}",
+                  file=out)
+        if len(rows) >= 3:
+            ns = np.array([r[0] for r in rows], float)
+            fits = [-np.polyfit(np.log(ns), np.log([r[1][i] for r in rows]), 1)[0]
+                    for i in range(3)]
+            print(f"{'fit':>8} {'':>10} {fits[0]:6.2f} {'':>12} {fits[1]:6.2f} {'':>10} "
+                  f"{fits[2]:6.2f}", file=out)
+
+
+def table_full_contact(nodes, out) -> None:
+    mat = bem.Prony.standard_linear_solid(3.0)
+    load = 2.0
+    print(f"\n## Full contact against Appendix B (SLS ratio 3, hk 1, load {load}, N {nodes})",
+          file=out)
+    print(f"{'speed':>8} {'mu BEM':>20} {'mu Appendix B':>20} {'rel err':>10} "
+          f"{'ke_hat err':>11}", file=out)
+    for speed in (1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3):
+        _progress(f"full contact speed {speed:g}")
+        r = bem.solve(bem.Sinusoid(1.0), mat, speed, nodes, load=load)
+        mu, kehat = _appendix_b_mu(mat, speed, load, 1.0)
+        if not (r.success and r.full_contact):
+            print(f"{speed:>8g} unexpected: success={r.success} full={r.full_contact}", file=out)
+            continue
+        print(f"{speed:>8g} {r.mu:20.15e} {mu:20.15e} {abs(r.mu - mu) / mu:10.2e} "
+              f"{abs(r.ke_hat - kehat):11.2e}", file=out)
+
+
+def table_iterations(exponents, out) -> None:
+    mat = bem.Prony.standard_linear_solid(3.0)
+    speed, load = 1.0, 0.3
+    print(f"\n## Iterations against N (SLS ratio 3, hk 1, speed {speed}, load {load}, tol 1e-10)",
+          file=out)
+    print("nested: outer steps / GMRES iterations per outer step on the finest grid; "
+          "single grid: the same without nested iteration (initial active set from the "
+          "full-contact pressure)", file=out)
+    print(f"{'N':>8} {'nested nit':>10} {'inner per outer':>18} {'single nit':>10} "
+          f"{'inner per outer (single grid)':>40}", file=out)
+    for e in exponents:
+        n = 2**e
+        _progress(f"iterations N {n}")
+        a = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load)
+        b = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load, nested=False)
+        print(f"{n:>8} {a.nit:>10} {str(a.inner_iterations):>18} {b.nit:>10} "
+              f"{str(b.inner_iterations):>40}", file=out)
+
+
+def _timed(n, speed, load):
+    mat = bem.Prony.standard_linear_solid(3.0)
+    t0 = time.perf_counter()
+    r = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load)
+    return time.perf_counter() - t0, r
+
+
+def table_timing(big_exponent, out) -> None:
+    print("\n## Time per operating point (influence coefficients of every grid included)",
+          file=out)
+    print(f"machine: {platform.processor() or platform.machine()}, Python "
+          f"{platform.python_version()}; warm-up solve at N = 4096 first, so numba "
+          "compilation and start-up are excluded", file=out)
+    _timed(4096, 1.0, 0.3)  # warm-up (compilation, FFT plans)
+    points = ((1e-6, 0.3), (1.0, 0.3), (1e6, 0.3), (1.0, 0.6), (1.0, 2.0))
+    mat = bem.Prony.standard_linear_solid(3.0)
+    for n in (2**16, 2**big_exponent):
+        print(f"\nN = {n}", file=out)
+        print(f"{'speed':>8} {'load':>6} {'time [s]':>9} {'coeff [s]':>9} {'full':>5} "
+              f"{'nit':>4} {'inner':>10} {'peak traced [MiB]':>18}", file=out)
+        for speed, load in points:
+            _progress(f"timing N {n} speed {speed:g} load {load}")
+            best = min(_timed(n, speed, load)[0] for _ in range(3 if n <= 2**16 else 1))
+            t0 = time.perf_counter()
+            bem.influence_coefficients(mat, speed, n)
+            tc = time.perf_counter() - t0
+            tracemalloc.start()
+            _, r = _timed(n, speed, load)
+            peak = tracemalloc.get_traced_memory()[1] / 2**20
+            tracemalloc.stop()
+            print(f"{speed:>8g} {load:>6g} {best:9.3f} {tc:9.3f} {str(r.full_contact):>5} "
+                  f"{r.nit:>4} {str(r.inner_iterations):>10} {peak:18.0f}", file=out)
+    rss = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+    print(f"\npeak traced = tracemalloc peak of one solve (NumPy buffers; best of 3 timings "
+          f"is without tracemalloc). ru_maxrss of the whole process (interpreter, numba, "
+          f"all tables so far): {rss:.0f} MiB", file=out)
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(prog="bench-bem", description=__doc__.splitlines()[0])
+    parser.add_argument("--min-exponent", type=int, default=8, help="smallest N = 2^e (8)")
+    parser.add_argument("--max-exponent", type=int, default=16,
+                        help="largest N = 2^e of the accuracy and iteration tables (16)")
+    parser.add_argument("--big-exponent", type=int, default=20,
+                        help="N = 2^e of the large timing run (20)")
+    parser.add_argument("--load", type=float, default=0.3,
+                        help="load of the elastic-limit table (0.3: partial contact at both ends)")
+    parser.add_argument("--tables", default="limits,full,iterations,timing",
+                        help="comma-separated subset of limits,full,iterations,timing")
+    args = parser.parse_args(argv)
+    if not 3 <= args.min_exponent <= args.max_exponent <= 22 or not 3 <= args.big_exponent <= 22:
+        print("bench-bem: exponents must satisfy 3 <= min <= max <= 22 and 3 <= big <= 22",
+              file=sys.stderr)
+        return 2
+    tables = set(args.tables.split(","))
+    unknown = tables - {"limits", "full", "iterations", "timing"}
+    if unknown:
+        print(f"bench-bem: unknown tables {sorted(unknown)}", file=sys.stderr)
+        return 2
+    exps = range(args.min_exponent, args.max_exponent + 1)
+    out = sys.stdout
+    print("# BEM benchmark (issue 3)", file=out)
+    if "limits" in tables:
+        table_elastic_limits(exps, args.load, out)
+    if "full" in tables:
+        table_full_contact(1024, out)
+    if "iterations" in tables:
+        table_iterations(exps, out)
+    if "timing" in tables:
+        table_timing(args.big_exponent, out)
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    raise SystemExit(main())
