@@ -141,7 +141,8 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             inner.append(its)
         gap = grid.op.apply(sigma) - grid.y + s
         if not ok:
-            status, message = 2, f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
+            status = 2
+            message = f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
             break
         changed = _kernels.update_active_set(active, sigma, gap, new)
         if changed == 0:
@@ -411,6 +412,24 @@ def solve(profile, material, speed, nodes, *, load=None, penetration=None, tol=1
     amp = float(profile.amplitude)
     sep = None if penetration is None else amp * (1.0 - penetration)
 
+    fine = _Grid(profile, material, speed, nodes)
+    full_start = None
+    if sep == 0.0:
+        # Delta = h: full contact, whose load is not unique; return the smallest
+        # one (the full-contact threshold, the limit of Delta -> h from below)
+        sig = fine.op.pseudo_solve(fine.y)
+        full_start = sig - float(sig.min())
+    elif load is not None:
+        sig = fine.op.pseudo_solve(fine.y) + load
+        if sig.min() >= 0.0:  # full contact: no active-set iteration needed
+            full_start = sig
+    if full_start is not None:
+        res = {"sigma": full_start, "s": float(fine.y.mean()), "active": np.ones(nodes, np.bool_),
+               "gap": fine.op.apply(full_start) - fine.y + float(fine.y.mean()), "nit": 1,
+               "inner": [0], "relres": 0.0, "status": 0, "message": "converged"}
+        return _build_result(res, fine, profile, material, speed, amp, load,
+                             [(nodes, 1, (0,))])
+
     sizes = [nodes]
     while nested and sizes[-1] // level_ratio >= coarsest:
         sizes.append(sizes[-1] // level_ratio)
@@ -419,36 +438,27 @@ def solve(profile, material, speed, nodes, *, load=None, penetration=None, tol=1
     history = []
     prev = prev_grid = None
     for level, n in enumerate(sizes):
-        grid = _Grid(profile, material, speed, n)
         final = level == len(sizes) - 1
+        grid = fine if final else _Grid(profile, material, speed, n)
+        # coarse grids only supply a starting active set: 1e-8 is plenty there
         level_tol = tol if final else max(tol, 1e-8)
-        if sep == 0.0:
-            # Delta = h: full contact; the load is the full-contact threshold
-            sig = grid.op.pseudo_solve(grid.y)
-            thr = -float(sig.min())
-            res = {"sigma": sig + thr, "s": 0.0, "active": np.ones(n, np.bool_),
-                   "gap": grid.op.apply(sig) - grid.y, "nit": 1, "inner": [0], "relres": 0.0,
-                   "status": 0, "message": "converged"}
-        else:
-            if prev is None:
-                if load is not None:
-                    sig = grid.op.pseudo_solve(grid.y) + load
-                    active = sig > 0.0
-                    sigma0 = np.where(active, sig, 0.0)
-                else:
-                    active = grid.y > sep
-                    sigma0 = np.zeros(n)
-                s0 = 0.0 if sep is None else sep
+        if prev is None:
+            if load is not None:
+                sig = grid.op.pseudo_solve(grid.y) + load
+                active = sig > 0.0
+                sigma0 = np.where(active, sig, 0.0)
             else:
-                active, sigma0, s0 = _prolong(prev, prev_grid, grid)
-                if sep is not None:
-                    s0 = sep
-            res = _solve_grid(grid, load, sep, active, sigma0, s0, level_tol, max_outer,
-                              restart, max_inner)
+                active = grid.y > sep  # the rigid overlap
+                sigma0 = np.zeros(n)
+            s0 = 0.0 if sep is None else sep
+        else:
+            # an unconverged coarse grid only gives a worse start
+            active, sigma0, s0 = _prolong(prev, prev_grid, grid)
+            if sep is not None:
+                s0 = sep
+        res = _solve_grid(grid, load, sep, active, sigma0, s0, level_tol, max_outer,
+                          restart, max_inner)
         history.append((n, res["nit"], tuple(res["inner"])))
-        if res["status"] != 0 and not final:
-            # a coarse failure only costs a worse start: go on from its last iterate
-            pass
         prev, prev_grid = res, grid
 
     return _build_result(prev, prev_grid, profile, material, speed, amp, load, history)
