@@ -97,7 +97,9 @@ def run(spec, fields=False):
             out["error"] = f"{res.message}; residuals {res.residuals}"
         else:
             out["ok"] = True
-            rec = {"solver": "bem", "load": res.load, "speed": spec["speed"],
+            # the input load is echoed; with penetration control the load is the BEM's output
+            load = spec["load"] if spec.get("load") is not None else float(res.load)
+            rec = {"solver": "bem", "load": load, "speed": spec["speed"],
                    "ratio": spec["ratio"] if not spec.get("prony") else None, "hk": spec["hk"],
                    "nodes": nodes, "iterations": res.nit}
             for key in ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration",
