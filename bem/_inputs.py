@@ -101,6 +101,33 @@ class Prony:
         """((J_i, tau_i), ...)."""
         return tuple(zip(self.J, self.tau))
 
+    @property
+    def relaxation_times(self) -> tuple:
+        """Relaxation times of the pressure, in ``tau_ref`` (ascending).
+
+        They are -1/s at the zeros of ``s J(s) = J(0+) + sum_i J_i/(1 + s tau_i)``, one below
+        the leftmost pole -1/tau_i and one between each pair of poles; for the standard linear
+        solid ``tau E0/E_inf``.  At speed w the pressure memory acts over a length
+        ``w tau_R / (2 pi)`` wavelengths behind each edge (the layer the mesh must resolve).
+        """
+        from scipy.optimize import brentq
+        terms = [(j, t) for j, t in self.terms if j > 0.0]
+        if not terms:
+            return ()
+        f = lambda s: self.j_plus + sum(j / (1.0 + s * t) for j, t in terms)
+        poles = sorted(-1.0 / t for _, t in terms)
+        out = []
+        lo = poles[0] * 2.0
+        while f(lo) <= 0.0:  # f → J(0+) > 0 as s → −∞
+            lo *= 2.0
+        edges = [lo] + poles
+        for a, b in zip(edges[:-1], edges[1:]):
+            span = b - a
+            # f is +∞ just right of a pole and −∞ just left of the next: bracket inside (a, b)
+            ta, tb = a + 1e-12 * span, b - 1e-12 * span
+            out.append(-1.0 / brentq(f, ta, tb, xtol=1e-15 * abs(b), rtol=1e-15))
+        return tuple(sorted(out))
+
     def jstar(self, n, speed: float):
         """Complex compliance of mode n at sliding speed w: J*(-k_n V).
 

@@ -1,6 +1,8 @@
 """Result objects of :func:`bem.solve` (frozen, SciPy-like)."""
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, Mapping
@@ -77,6 +79,11 @@ class BemResult:
         indicator, not a convergence residual.
     levels : tuple of (nodes, nit, inner iterations)
         The nested-iteration history, coarse to fine.
+    memory_layer_panels : float
+        Panels across the thinnest pressure memory layer, speed × (shortest relaxation time)
+        (`Prony.relaxation_times`); inf at speed 0.  Below about 3 the contact edges carry an
+        error of the order of the layer: e.g. at V/V0 = 1e-6 the true half-width is
+        ka_W − (1 − 1/ρ)(V/V0)/2, a shift no N ≤ 2^20 resolves; the message says so below 1.
     """
 
     success: bool
@@ -105,6 +112,7 @@ class BemResult:
     gap: np.ndarray = field(repr=False)
     patches: tuple = ()
     levels: tuple = ()
+    memory_layer_panels: float = math.inf
 
     def __post_init__(self):
         for name in ("x_over_lambda", "pressure", "displacement", "gap"):

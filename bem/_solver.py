@@ -485,6 +485,10 @@ def _build_result(res, grid: _Grid, profile, material, speed, amp, load, history
         "krylov": float(res["relres"]) / amp,
         "friction_mismatch": abs(tau_direct - tau_f) / abs(tau_f) if tau_f != 0 else 0.0,
     }
+    # panels across the thinnest pressure memory layer w τ_R (only reported, not a residual
+    # that gates success): below one panel the edges carry an error of the order of the layer
+    tau_r = material.relaxation_times
+    layer = speed * min(tau_r) * n / (2.0 * math.pi) if (tau_r and speed > 0.0) else math.inf
     full = bool(active.all())
     if full:
         ka, ke, frac, patches = math.pi, None, 1.0, ()
@@ -505,6 +509,9 @@ def _build_result(res, grid: _Grid, profile, material, speed, amp, load, history
     if not success:
         message = (f"not converged: {message}; residuals "
                    + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
+    elif layer < 1.0 and not full:
+        message += (f"; the pressure memory layer spans {layer:.2g} panel: contact edges carry an "
+                    "error of the order of the layer (refine N to resolve it)")
     return BemResult(
         success=success, status=status, message=message, nit=int(res["nit"]),
         inner_iterations=tuple(res["inner"]), residuals=residuals, nodes=n, speed=speed,
@@ -512,4 +519,4 @@ def _build_result(res, grid: _Grid, profile, material, speed, amp, load, history
         contact_fraction=frac, ka=ka, ke=ke, ke_hat=ke_hat,
         penetration=(amp - s) / amp, tau_f=tau_f, mu=tau_f / mean_p if mean_p > 0 else float("nan"),
         separation=s / amp, x_over_lambda=grid.x, pressure=sigma, displacement=disp,
-        gap=gap_out, patches=patches, levels=tuple(history))
+        gap=gap_out, patches=patches, levels=tuple(history), memory_layer_panels=layer)

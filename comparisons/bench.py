@@ -64,5 +64,5 @@ def main(args):
         rc |= analytic_sweep(args.points)
     if getattr(args, "bem", False) or getattr(args, "bem_only", False):
         from . import _bench_bem
-        rc |= _bench_bem.main(["--max-log2n", str(args.max_log2n)])
+        rc |= _bench_bem.main(["--big-exponent", str(args.max_log2n)])
     return rc

@@ -6,7 +6,8 @@
     python -m comparisons sweep --solver {analytic,bem} --load P [P ...] --speed S [S ...]
                                 [--ratio R] [--hk H] [--nodes N] [--workers W]
     python -m comparisons report [--out DIR] [--quick] [--resume]
-    python -m comparisons bench [--points N] [--bem]
+    python -m comparisons bench [--points N] [--bem | --bem-only]
+    python -m comparisons crosscheck [--nodes N ...]
 
 `point` prints one JSON object; `sweep` one per line as each point is done (loads outer, speeds
 inner).  Bad input: one line on standard error, exit status 2.  A point that does not converge is
@@ -94,7 +95,9 @@ def build_parser():
     p.add_argument("--bem", action="store_true", help="also run the BEM benchmark tables")
     p.add_argument("--bem-only", action="store_true", help="only the BEM benchmark tables")
     p.add_argument("--max-log2n", type=_int("max-log2n"), default=20,
-                   help="largest BEM mesh 2^n of the BEM benchmark (default 20)")
+                   help="largest BEM mesh 2^n of the BEM speed/memory benchmark (default 20)")
+    p = sub.add_parser("crosscheck", help="BEM − semi-analytic differences on the grid of operating points")
+    p.add_argument("--nodes", type=_int("nodes"), nargs="+", default=[1024, 4096, 16384, 65536])
     return parser
 
 
@@ -176,6 +179,9 @@ def main(argv=None):
         if args.command == "bench":
             from . import bench
             return bench.main(args)
+        if args.command == "crosscheck":
+            from . import crosscheck
+            return crosscheck.print_table(args.nodes)
     except BadInput as exc:
         print(str(exc).splitlines()[0], file=sys.stderr)
         return EXIT_BAD_INPUT

@@ -53,13 +53,21 @@ def validate(spec):
         _bem_problem(spec)  # reads and checks --profile / --prony files
 
 
+def _read(reader, name, path):
+    try:
+        return reader(path)
+    except OSError as exc:
+        raise ValueError(f"{name} = {path!r}: cannot read the file ({exc.strerror})") from None
+
+
 def _bem_problem(spec):
     import bem
     if spec.get("prony"):
-        material = bem.read_prony(spec["prony"])
+        material = _read(bem.read_prony, "prony", spec["prony"])
     else:
         material = bem.Prony.standard_linear_solid(spec["ratio"])
-    profile = bem.read_profile(spec["profile"]) if spec.get("profile") else bem.Sinusoid(spec["hk"])
+    profile = (_read(bem.read_profile, "profile", spec["profile"]) if spec.get("profile")
+               else bem.Sinusoid(spec["hk"]))
     return profile, material
 
 

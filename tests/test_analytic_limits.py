@@ -71,6 +71,19 @@ def test_deviation_from_westergaard_is_linear_in_speed():
     assert abs(a1 / a2 / 100 - 1) < 1e-3
 
 
+@pytest.mark.parametrize("load", [0.01, 0.2, 0.45])
+def test_low_speed_shift_of_the_half_width(load):
+    """ka = ka_W − δ/2 and ke = δ/2 to first order, δ = (1 − 1/ρ)V/V0 = (E0/E1)Vτk, whatever the
+    load: the leading edge stays at Westergaard's position and the trailing edge retreats by δ,
+    the shift the first-order compliance 1/E0 + ikVτ/E1 applies to the pressure."""
+    for ratio in (3.0, 10.0):
+        w = 1e-7
+        half = 0.5 * (1.0 - 1.0 / ratio)
+        sol = analytic.solve(load, w, ratio, HK)
+        assert (sol.ka - westergaard.half_angle(load, HK)) / w == pytest.approx(-half, rel=1e-5)
+        assert sol.ke / w == pytest.approx(half, rel=1e-5)
+
+
 def test_speed_zero_is_westergaard_exactly():
     for load in (0.01, 0.2, 0.49):
         sol = analytic.solve(load, 0.0, RHO, HK)

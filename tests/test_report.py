@@ -1,0 +1,97 @@
+"""End to end: `report --quick` and `sweep --solver bem` into a temporary folder, and --resume."""
+import json
+import os
+import re
+import subprocess
+import sys
+
+import pytest
+
+
+def _cli(*args, cwd):
+    return subprocess.run([sys.executable, "-m", "comparisons", *args], capture_output=True,
+                          text=True, cwd=cwd)
+
+
+@pytest.fixture(scope="module")
+def quick_report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("report")
+    proc = _cli("report", "--quick", "--out", str(out), cwd=out)
+    return out, proc
+
+
+def test_quick_report_writes_every_part(quick_report):
+    out, proc = quick_report
+    assert proc.returncode == 0, proc.stderr
+    assert "report: [" in proc.stderr  # progress on standard error
+    md = (out / "report.md").read_text()
+    for fig in ["fig03a", "fig03b"] + [f"fig{n:02d}" for n in range(4, 13)] + ["fields", "convergence"]:
+        assert (out / f"{fig}.png").stat().st_size > 10_000
+        assert f"({fig}.png)" in md
+    for section in ["Fields: σ(x) and v(x)", "Scalars from both roads", "Agreement of the two roads",
+                    "Convergence of the BEM", "Provenance"]:
+        assert section in md
+    assert "numba" in md and "date (UTC)" in md
+    html = (out / "report.html").read_text()
+    assert html.count("data:image/png;base64,") == 13 and "src=\"fig" not in html  # readable offline
+
+
+def test_quick_report_agreement_is_within_the_measured_tolerances(quick_report):
+    out, _ = quick_report
+    md = (out / "report.md").read_text()
+    row = re.search(r"^\| 4096 \| ([^|]+) \| ([^|]+) \| ([^|]+) \| ([^|]+) \| ([^|]+) \| 0 \|$", md, re.M)
+    assert row, "grid table row at N = 4096 missing or a point did not converge"
+    pen, mu, ka, ke, keh = (float(x) for x in row.groups())
+    assert pen < 2e-6 and mu < 1.5e-5 and ka < 6e-4 and ke < 6e-4 and keh < 2.5e-6
+
+
+def test_resume_recomputes_only_what_is_missing(quick_report):
+    out, _ = quick_report
+    results = out / "results"
+    files = sorted(p for p in results.iterdir() if p.suffix == ".json")
+    removed = files[:3]
+    for p in removed:
+        p.unlink()
+    mtime = files[5].stat().st_mtime_ns
+    proc = _cli("report", "--quick", "--resume", "--out", str(out), cwd=out)
+    assert proc.returncode == 0, proc.stderr
+    m = re.search(r"report: (\d+) BEM runs, (\d+) already done", proc.stderr)
+    assert int(m.group(1)) - int(m.group(2)) == 3
+    assert all(p.exists() for p in removed)
+    assert files[5].stat().st_mtime_ns == mtime
+    assert not any(p.name.endswith(".part.json") for p in results.iterdir())
+
+
+def test_bem_sweep_and_point_with_files(tmp_path):
+    proc = _cli("sweep", "--solver", "bem", "--nodes", "512", "--load", "0.3", "1.0",
+                "--speed", "0.5", "2", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    recs = [json.loads(line) for line in proc.stdout.splitlines()]
+    assert [(r["load"], r["speed"]) for r in recs] == [(0.3, 0.5), (0.3, 2.0), (1.0, 0.5), (1.0, 2.0)]
+    assert all(r["solver"] == "bem" and r["nodes"] == 512 and r["iterations"] >= 0 for r in recs)
+    import analytic
+    assert [r["full_contact"] for r in recs] == [analytic.solve(r["load"], r["speed"]).full_contact
+                                                for r in recs] == [False, False, True, True]
+    # a two-harmonic profile and a two-term Prony series read from files
+    (tmp_path / "profile.txt").write_text("# k y over one period\n" + "\n".join(
+        repr(float(__import__("math").cos(2 * 3.141592653589793 * (j / 64 - 0.5))
+                   + 0.2 * __import__("math").cos(6 * 3.141592653589793 * (j / 64 - 0.5))))
+        for j in range(64)) + "\n")
+    (tmp_path / "prony.txt").write_text("J0 1.0\n0.5 1.0\n0.2 0.01\n")
+    proc = _cli("point", "--solver", "bem", "--nodes", "1024", "--load", "0.2", "--speed", "1",
+                "--profile", "profile.txt", "--prony", "prony.txt", "--fields", "f.csv", cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    rec = json.loads(proc.stdout)
+    assert rec["mu"] > 0 and os.path.getsize(tmp_path / "f.csv") > 1000
+
+
+def test_bem_bad_input_from_the_command_line(tmp_path):
+    for args, word in [(["--nodes", "4"], "nodes"), (["--nodes", "12.5"], "nodes"),
+                       (["--prony", "missing.txt"], "prony")]:
+        proc = _cli("point", "--solver", "bem", "--load", "0.3", "--speed", "1", *args, cwd=tmp_path)
+        assert proc.returncode == 2 and proc.stdout == ""
+        lines = proc.stderr.strip().splitlines()
+        assert len(lines) == 1 and word in lines[0].lower(), proc.stderr
+    (tmp_path / "bad.txt").write_text("J0 1.0\n-0.5 1.0\n")
+    proc = _cli("point", "--solver", "bem", "--load", "0.3", "--speed", "1", "--prony", "bad.txt", cwd=tmp_path)
+    assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
