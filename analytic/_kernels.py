@@ -50,6 +50,36 @@ def node(T, h0, npan, p, i):
 
 
 @njit(cache=True)
+def graded_nodes(L, hl, hr):
+    """Nodes of the two-sided graded rule on [0, L]: distances from both ends, and weights."""
+    half = 0.5 * L
+    hl = min(hl, half)
+    hr = min(hr, half)
+    nl = panel_count(half, hl)
+    nr = panel_count(half, hr)
+    n = (nl + nr) * NG
+    from_left = np.empty(n)
+    from_right = np.empty(n)
+    weight = np.empty(n)
+    k = 0
+    for p in range(nl):
+        for i in range(NG):
+            s, wt = node(half, hl, nl, p, i)
+            from_left[k] = s
+            from_right[k] = L - s
+            weight[k] = wt
+            k += 1
+    for p in range(nr):
+        for i in range(NG):
+            s, wt = node(half, hr, nr, p, i)
+            from_left[k] = L - s
+            from_right[k] = s
+            weight[k] = wt
+            k += 1
+    return from_left, from_right, weight
+
+
+@njit(cache=True)
 def phi(y):
     """y sqrt(1 + y²) − asinh(y) without cancellation (y ≥ 0)."""
     if y < 0.5:
@@ -129,58 +159,32 @@ def closure_integrals(A, G, w, rho):
 @njit(cache=True)
 def contact_pressure(theta, A, G, beta, Hc, Hs, kappa):
     """Σ(θ) = β ∫_θ^A P(φ) e^{−β(φ−θ)} dφ at one point −A ≤ θ ≤ A (inverse of eq. 2.8)."""
-    tL0 = min(max(theta + A, 0.0), 2.0 * A)
+    tL0 = min(max(theta + A, 0.0), 2.0 * A)   # distance of θ from the trailing edge
     ell = min(max(A - theta, 0.0), 2.0 * A)
     if ell <= 0.0:
         return 0.0
     feat = min(1.0 / beta, 2.0 * G, 2.0 * A)
-    hl = 0.25 * (min(feat, tL0) if tL0 > 0.0 else feat)
-    hr = 0.25 * feat
-    half = 0.5 * ell
-    hl = min(hl, half)
-    hr = min(hr, half)
-    nl = panel_count(half, hl)
-    nr = panel_count(half, hr)
+    # refined toward θ (memory layer, the trailing edge at distance tL0) and toward A
+    s, sR, wq = graded_nodes(ell, 0.25 * (min(feat, tL0) if tL0 > 0.0 else feat), 0.25 * feat)
     acc = 0.0
-    for p in range(nl):          # refined toward θ (memory layer, nearby trailing edge)
-        for i in range(NG):
-            s, wt = node(half, hl, nl, p, i)
-            acc += wt * contact_density(tL0 + s, ell - s, G, Hc, Hs, kappa) * math.exp(-beta * s)
-    for p in range(nr):          # refined toward the leading edge A
-        for i in range(NG):
-            sr, wt = node(half, hr, nr, p, i)
-            s = ell - sr
-            acc += wt * contact_density(tL0 + s, sr, G, Hc, Hs, kappa) * math.exp(-beta * s)
+    for j in range(s.size):
+        acc += wq[j] * contact_density(tL0 + s[j], sR[j], G, Hc, Hs, kappa) * math.exp(-beta * s[j])
     return beta * acc
 
 
 @njit(cache=True)
 def gap_function(theta, A, G, w, Hc, Hs, kappa):
     """u(θ) = gap/h = (1/w) ∫_θ^{2π−A} R_q(ξ) e^{−(ξ−θ)/w} dξ at one point A ≤ θ ≤ 2π − A."""
-    L = 2.0 * G
-    uL0 = min(max(theta - A, 0.0), L)
-    ell = L - uL0
+    uL0 = min(max(theta - A, 0.0), 2.0 * G)   # distance of θ from the contact edge A
+    ell = 2.0 * G - uL0
     if ell <= 0.0:
         return 0.0
     sA = math.sin(0.5 * A)
     feat = min(w, 2.0 * A, 2.0 * G)
-    hl = 0.25 * (min(feat, uL0) if uL0 > 0.0 else feat)
-    hr = 0.25 * feat
-    half = 0.5 * ell
-    hl = min(hl, half)
-    hr = min(hr, half)
-    nl = panel_count(half, hl)
-    nr = panel_count(half, hr)
+    s, sR, wq = graded_nodes(ell, 0.25 * (min(feat, uL0) if uL0 > 0.0 else feat), 0.25 * feat)
     acc = 0.0
-    for p in range(nl):
-        for i in range(NG):
-            s, wt = node(half, hl, nl, p, i)
-            acc += wt * gap_density(uL0 + s, ell - s, sA, Hc, Hs, kappa) * math.exp(-s / w)
-    for p in range(nr):
-        for i in range(NG):
-            sr, wt = node(half, hr, nr, p, i)
-            s = ell - sr
-            acc += wt * gap_density(uL0 + s, sr, sA, Hc, Hs, kappa) * math.exp(-s / w)
+    for j in range(s.size):
+        acc += wq[j] * gap_density(uL0 + s[j], sR[j], sA, Hc, Hs, kappa) * math.exp(-s[j] / w)
     return acc / w
 
 
@@ -208,92 +212,34 @@ def paper_closures(A, G, w, rho, ke, Hc, Hs, kappa):
     """
     beta = rho / w
     sA = math.sin(0.5 * A)
-    # (2.14)
-    half = A
-    hl = min(0.25 * min(1.0 / beta, 2.0 * G, 2.0 * A), half)
-    hr = min(0.25 * min(2.0 * G, 2.0 * A), half)
-    nl = panel_count(half, hl)
-    nr = panel_count(half, hr)
+    # (2.14) over the whole contact, tL from the trailing edge
+    tL, tR, wq = graded_nodes(2.0 * A, 0.25 * min(1.0 / beta, 2.0 * G, 2.0 * A),
+                              0.25 * min(2.0 * G, 2.0 * A))
     s_val = 0.0
     s_abs = 0.0
-    for p in range(nl):
-        for i in range(NG):
-            tL, wt = node(half, hl, nl, p, i)
-            P = contact_density(tL, 2.0 * A - tL, G, Hc, Hs, kappa)
-            f = wt * math.exp(-beta * tL)
-            s_val += f * P
-            s_abs += f * abs(P)
-    for p in range(nr):
-        for i in range(NG):
-            tR, wt = node(half, hr, nr, p, i)
-            tL = 2.0 * A - tR
-            P = contact_density(tL, tR, G, Hc, Hs, kappa)
-            f = wt * math.exp(-beta * tL)
-            s_val += f * P
-            s_abs += f * abs(P)
+    for j in range(tL.size):
+        P = contact_density(tL[j], tR[j], G, Hc, Hs, kappa)
+        f = wq[j] * math.exp(-beta * tL[j])
+        s_val += f * P
+        s_abs += f * abs(P)
     r214 = abs(s_val) / s_abs
-    # (2.15)
-    half = G
-    h = min(0.25 * min(w, 2.0 * A, 2.0 * G), half)
-    hr = min(0.25 * min(2.0 * A, 2.0 * G), half)
-    nl = panel_count(half, h)
-    nr = panel_count(half, hr)
+    # (2.15) over the whole gap, uL from the contact edge A
+    uL, uR, wq = graded_nodes(2.0 * G, 0.25 * min(w, 2.0 * A, 2.0 * G), 0.25 * min(2.0 * A, 2.0 * G))
     q_val = 0.0
     q_abs = 0.0
-    for side in range(2):
-        n = nl if side == 0 else nr
-        hh = h if side == 0 else hr
-        for p in range(n):
-            for i in range(NG):
-                s, wt = node(half, hh, n, p, i)
-                if side == 0:
-                    uL = s
-                    uR = 2.0 * G - s
-                else:
-                    uR = s
-                    uL = 2.0 * G - s
-                R = math.sqrt(math.sin(0.5 * uL) * math.sin(0.5 * uR))
-                c2 = math.sin(0.25 * (uR - uL))
-                th = A + uL
-                QW = math.cos(th) + 2.0 * sA * sA * phi(R / sA)
-                QWp = -math.sin(th) + 2.0 * c2 * R
-                QK = -2.0 * math.asinh(R / sA)
-                qA = Hc * QW + kappa * QK + Hs * QWp
-                f = wt * math.exp(-uL / w) / w
-                q_val += f * qA
-                q_abs += f * abs(qA)
+    for j in range(uL.size):
+        R = math.sqrt(math.sin(0.5 * uL[j]) * math.sin(0.5 * uR[j]))
+        c2 = math.sin(0.25 * (uR[j] - uL[j]))
+        th = A + uL[j]
+        QW = math.cos(th) + 2.0 * sA * sA * phi(R / sA)
+        QWp = -math.sin(th) + 2.0 * c2 * R
+        QK = -2.0 * math.asinh(R / sA)
+        qA = Hc * QW + kappa * QK + Hs * QWp
+        f = wq[j] * math.exp(-uL[j] / w) / w
+        q_val += f * qA
+        q_abs += f * abs(qA)
     EL = math.exp(-2.0 * G / w)
     rhs1 = math.cos(A + ke)
     rhs2 = math.cos(A - ke) * EL
     r215 = abs(q_val - rhs1 + rhs2) / (q_abs + abs(rhs1) + abs(rhs2))
     return r214, r215
-
-
-@njit(cache=True)
-def graded_nodes(L, hl, hr):
-    """Nodes of the two-sided graded rule on [0, L]: distances from both ends, and weights."""
-    half = 0.5 * L
-    hl = min(hl, half)
-    hr = min(hr, half)
-    nl = panel_count(half, hl)
-    nr = panel_count(half, hr)
-    n = (nl + nr) * NG
-    from_left = np.empty(n)
-    from_right = np.empty(n)
-    weight = np.empty(n)
-    k = 0
-    for p in range(nl):
-        for i in range(NG):
-            s, wt = node(half, hl, nl, p, i)
-            from_left[k] = s
-            from_right[k] = L - s
-            weight[k] = wt
-            k += 1
-    for p in range(nr):
-        for i in range(NG):
-            s, wt = node(half, hr, nr, p, i)
-            from_left[k] = L - s
-            from_right[k] = s
-            weight[k] = wt
-            k += 1
-    return from_left, from_right, weight

@@ -36,37 +36,31 @@ def _check_finite(name, value, allowed):
     return value
 
 
+_ALLOWED = {  # parameter: (what is allowed, test)
+    "load": ("> 0", lambda v: v > 0.0),
+    "speed": ("≥ 0", lambda v: v >= 0.0),
+    "ratio": ("> 1 (E∞ > E0)", lambda v: v > 1.0),
+    "hk": ("> 0", lambda v: v > 0.0),
+    "penetration": ("in (0, 1] (Δ/h)", lambda v: 0.0 < v <= 1.0),
+}
+
+
 def validate(load=None, speed=None, ratio=None, hk=None, penetration=None):
     """Check the dimensionless inputs; raise ValueError naming the parameter, value and range."""
+    given = {"load": load, "speed": speed, "ratio": ratio, "hk": hk, "penetration": penetration}
     out = {}
-    if load is not None:
-        v = _check_finite("load", load, "> 0")
-        if v <= 0.0:
-            raise ValueError(f"load = {v!r}: must be > 0")
-        out["load"] = v
-    if speed is not None:
-        v = _check_finite("speed", speed, "≥ 0")
-        if v < 0.0:
-            raise ValueError(f"speed = {v!r}: must be ≥ 0")
-        if v != 0.0 and not SPEED_RANGE[0] <= v <= SPEED_RANGE[1]:
-            raise ValueError(f"speed = {v!r}: must be 0 or within [{SPEED_RANGE[0]:g}, {SPEED_RANGE[1]:g}]"
-                             " (beyond, the viscoelastic correction is below double precision)")
-        out["speed"] = v
-    if ratio is not None:
-        v = _check_finite("ratio", ratio, "> 1 (E∞ > E0)")
-        if v <= 1.0:
-            raise ValueError(f"ratio = {v!r}: must be > 1 (E∞ > E0)")
-        out["ratio"] = v
-    if hk is not None:
-        v = _check_finite("hk", hk, "> 0")
-        if v <= 0.0:
-            raise ValueError(f"hk = {v!r}: must be > 0")
-        out["hk"] = v
-    if penetration is not None:
-        v = _check_finite("penetration", penetration, "in (0, 1] (Δ/h)")
-        if not 0.0 < v <= 1.0:
-            raise ValueError(f"penetration = {v!r}: must be in (0, 1] (Δ/h)")
-        out["penetration"] = v
+    for name, value in given.items():
+        if value is None:
+            continue
+        allowed, ok = _ALLOWED[name]
+        v = _check_finite(name, value, allowed)
+        if not ok(v):
+            raise ValueError(f"{name} = {v!r}: must be {allowed}")
+        out[name] = v
+    v = out.get("speed", 0.0)
+    if v != 0.0 and not SPEED_RANGE[0] <= v <= SPEED_RANGE[1]:
+        raise ValueError(f"speed = {v!r}: must be 0 or within [{SPEED_RANGE[0]:g}, {SPEED_RANGE[1]:g}]"
+                         " (beyond, the viscoelastic correction is below double precision)")
     return out
 
 

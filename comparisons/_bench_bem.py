@@ -55,6 +55,10 @@ def table_elastic_limits(exponents, load, out) -> None:
         ref = _westergaard(load, 1.0, modulus)
         print(f"\nspeed {speed:g} (modulus E{'0' if modulus == 1 else '_inf'}):  ka = {ref['ka']:.12f},"
               f" Delta/h = {ref['penetration']:.12f}, peak = {ref['peak']:.12f}", file=out)
+        if speed < 1.0:  # the physical deviation of ka is first order in speed (DERIVATION.md §7)
+            print(f"(the true ka is ka_W − (1 − 1/ρ) w/2 = ka_W − {(1 - 1 / 3) * speed / 2:.2e}; the "
+                  f"memory layer w/ρ spans {speed / 3 * 2 ** exponents[-1] / (2 * math.pi):.1e} panel "
+                  "at the finest N, so below that level this column measures the elastic edge)", file=out)
         print(f"{'N':>8} {'err ka':>10} {'order':>6} {'err Delta/h':>12} {'order':>6} "
               f"{'err peak':>10} {'order':>6} {'nit':>4} {'inner (finest)':>16}", file=out)
         rows = []

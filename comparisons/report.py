@@ -557,24 +557,24 @@ def write_report(folder, store, cfg, timings, failures):
         doc.h(2, "Runs that did not converge")
         doc.p("These operating points are missing from the figures and tables below; they were not reported as results.")
         doc.table(["spec", "error"], [[str(s), e] for s, e in failures])
+    def save(fig, name, caption):  # every figure is written as it is finished, then captioned
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, f"{name}.png"), dpi=110)
+        plt.close(fig)
+        doc.img(f"{name}.png", caption)
+
     doc.h(2, "The paper's figures, both roads")
     for name, fn in FIGURES:
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
         fn(ax, store, cfg)
-        fig.tight_layout()
-        fig.savefig(os.path.join(folder, f"{name}.png"), dpi=110)
-        plt.close(fig)
-        doc.img(f"{name}.png", ax.get_title() + f" (E∞/E0 = {RATIO:g}, hk = {HK:g}; BEM N = {cfg.nodes})")
+        save(fig, name, ax.get_title() + f" (E∞/E0 = {RATIO:g}, hk = {HK:g}; BEM N = {cfg.nodes})")
 
     doc.h(2, "Fields: σ(x) and v(x) from both roads")
     rows = field_comparison(store, cfg)
     fig = plt.figure(figsize=(4.2 * len(rows), 6.0))
     plot_fields(fig, rows)
-    fig.tight_layout()
-    fig.savefig(os.path.join(folder, "fields.png"), dpi=110)
-    plt.close(fig)
-    doc.img("fields.png", f"Pressure and displacement, BEM (markers, N = {cfg.nodes}) and semi-analytic (lines); "
-                          "bottom: BEM − semi-analytic at the BEM collocation points")
+    save(fig, "fields", f"Pressure and displacement, BEM (markers, N = {cfg.nodes}) and semi-analytic "
+                        "(lines); bottom: BEM − semi-analytic at the BEM collocation points")
     doc.table(["operating point", "p̃∞", "V/V0", "σ: L2 / max σ", "σ: L∞ / max σ", "v: L2 / h", "v: L∞ / h"],
               [[lbl, _fmt(p), _fmt(s)] + ([f"{n['pressure_L2']:.2e}", f"{n['pressure_Linf']:.2e}",
                                            f"{n['displacement_L2']:.2e}", f"{n['displacement_Linf']:.2e}"]
@@ -615,11 +615,8 @@ def write_report(folder, store, cfg, timings, failures):
     conv = convergence(store, cfg)
     fig = plt.figure(figsize=(4.6 * len(conv), 4.2))
     plot_convergence(fig, conv)
-    fig.tight_layout()
-    fig.savefig(os.path.join(folder, "convergence.png"), dpi=110)
-    plt.close(fig)
-    doc.img("convergence.png", "Error of the BEM against the semi-analytic solution; observed orders p from a "
-                               "log–log fit over N ≥ 1024 above round-off (dotted: N⁻¹, dashed: N⁻²)")
+    save(fig, "convergence", "Error of the BEM against the semi-analytic solution; observed orders p from "
+                             "a log–log fit over N ≥ 1024 above round-off (dotted: N⁻¹, dashed: N⁻²)")
     for c in conv:
         doc.h(3, c["label"])
         head = ["N", "ka error", "ke error", "Δ/h error", "μ error", "σ rel. L2 error"]
