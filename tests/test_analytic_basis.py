@@ -79,6 +79,7 @@ def test_antisymmetric_part_is_minus_the_derivative_of_westergaard():
         assert -log_kernel(P_Wprime, t) == pytest.approx(math.sin(t), abs=1e-10)
 
 
+@pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")  # the reference's own
 @pytest.mark.parametrize("A_,w", [(0.3, 0.5), (1.2, 1.0), (2.5, 3.0), (2.9, 0.2), (1.0, 20.0)])
 def test_closure_integrals_against_quadpack(A_, w):
     """The graded Gauss rules of the solver against QUADPACK with algebraic end weights."""
