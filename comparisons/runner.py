@@ -71,10 +71,6 @@ def _bem_problem(spec):
     return profile, material
 
 
-def _record_analytic(sol):
-    return sol.as_dict()
-
-
 def run(spec, fields=False):
     """Solve one operating point with the solver the spec names."""
     t0 = time.perf_counter()

@@ -133,3 +133,19 @@ def test_hunter_pressure_vanishes_at_both_edges_and_carries_the_load():
     vals = hunter.pressure(np.cos(th), z, RHO) * np.sin(th)
     load = np.trapezoid(vals, th)
     assert load == pytest.approx(math.pi / 4 * h.load_factor, rel=1e-6)
+
+
+def test_hunter_halfwidth_at_given_load_matches_the_periodic_solver():
+    """Load control of Hunter's cylinder: W/(E*R) and Vτ/R give a/R; the periodic solution at the
+    same small load and speed (R = 1/(hk²), W = p∞λ) has the same ka to first order in the load."""
+    Pbar = 1e-5
+    load = 0.5 * HK * Pbar
+    for z in (0.5, 2.0):
+        h = hunter.solve(z, RHO)
+        w = 2.0 * math.sqrt(Pbar / h.load_factor) / z
+        sol = analytic.solve(load, w, RHO, HK)
+        R = 1.0 / HK                      # k R = 1/(hk)
+        W_over_EstarR = load * 2 * math.pi / R  # W/(E* R) in units with k = 1
+        a = hunter.halfwidth(W_over_EstarR, w / R, RHO) * R
+        assert a == pytest.approx(sol.ka, rel=1e-4)
+        assert hunter.solve(a / w, RHO).load_factor * (a / R) ** 2 == pytest.approx(4 * W_over_EstarR / math.pi, rel=1e-13)
