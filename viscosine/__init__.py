@@ -1,0 +1,37 @@
+"""viscosine: a numerical verifier for the steady sliding of a rigid periodic indenter over a
+linear viscoelastic half-space.
+
+Two independent roads solve the same problem and never import each other:
+
+* :mod:`analytic` — the semi-analytic method of Menga, Putignano, Carbone & Demelio (Proc. R.
+  Soc. A 470, 20140392, 2014): Hunter's transformation, the periodic elastic solution and the
+  closure for the contact half-width and eccentricity (standard linear solid, sinusoid);
+* :mod:`bem` — a periodic boundary-element method on the steady-sliding Green's function (any
+  periodic profile, any Prony-series material);
+
+and :mod:`comparisons` checks one against the other (``python -m comparisons``).
+
+This package holds what both roads share without sharing any numerics: the version, the field
+container :class:`Fields` and the SI result :class:`SIResult`.  ``viscosine.analytic``,
+``viscosine.bem`` and ``viscosine.comparisons`` are the three packages themselves (imported on
+first use).
+"""
+from __future__ import annotations
+
+import importlib
+
+from ._fields import Fields
+from ._si import SIResult
+
+__version__ = "0.2.0"
+
+_LAZY = {"analytic", "bem", "comparisons"}
+
+
+def __getattr__(name):  # the roads are imported only when asked for
+    if name in _LAZY:
+        return importlib.import_module(name)
+    raise AttributeError(f"module 'viscosine' has no attribute {name!r}")
+
+
+__all__ = ["Fields", "SIResult", "__version__", "analytic", "bem", "comparisons"]

@@ -1,0 +1,134 @@
+"""The SI front both roads share: inputs in SI turned into the dimensionless groups, and a
+dimensionless result turned back into SI.  Nothing here solves anything.
+
+Natural units: lengths 1/k = λ/(2π) (or h), stresses E0/(1 − ν²), times τ (the creep time of the
+standard linear solid, J(t) = 1/E0 − (1/E1) e^{−t/τ}; a relaxation time τ_R of the same solid is
+τ E0/E∞).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._fields import Fields
+
+
+def _real(name, value, unit, test, allowed):
+    if isinstance(value, bool):
+        raise ValueError(f"{name}={value!r} is not allowed: {allowed} [{unit}]")
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}={value!r} is not allowed: {allowed} [{unit}]") from None
+    if not (math.isfinite(v) and test(v)):
+        raise ValueError(f"{name}={value!r} is not allowed: {allowed} [{unit}]")
+    return v
+
+
+@dataclass(frozen=True)
+class SIScales:
+    """The SI problem in dimensionless groups, and the scales that take results back."""
+
+    ratio: float        # E∞/E0
+    hk: float           # h k
+    speed: float        # V/V0 = V τ k
+    load: float | None  # p̃∞, or None under penetration control
+    penetration: float | None  # Δ/h, or None under load control
+    k: float            # wavenumber [1/m]
+    estar: float        # E0/(1 − ν²) [Pa]
+    wavelength: float   # λ [m]
+    amplitude: float    # h [m]
+    tau: float          # creep time [s]
+
+
+def scales(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
+           penetration=None) -> SIScales:
+    """Validate SI inputs (ValueError naming the parameter, its value and what is allowed)."""
+    E0 = _real("E0", E0, "Pa", lambda v: v > 0.0, "a finite modulus > 0")
+    Einf = _real("Einf", Einf, "Pa", lambda v: v > E0, f"a finite modulus > E0 = {E0!r}")
+    tau = _real("tau", tau, "s", lambda v: v > 0.0, "a finite creep (retardation) time > 0")
+    nu = _real("nu", nu, "-", lambda v: -1.0 < v <= 0.5, "a Poisson ratio in (-1, 0.5]")
+    lam = _real("wavelength", wavelength, "m", lambda v: v > 0.0, "a finite length > 0")
+    h = _real("amplitude", amplitude, "m", lambda v: v > 0.0, "a finite length > 0")
+    V = _real("speed", speed, "m/s", lambda v: v >= 0.0, "a finite speed >= 0")
+    if (mean_pressure is None) == (penetration is None):
+        raise ValueError(f"mean_pressure={mean_pressure!r}, penetration={penetration!r} is not "
+                         "allowed: give exactly one of mean_pressure [Pa] and penetration [m]")
+    k = 2.0 * math.pi / lam
+    estar = E0 / (1.0 - nu * nu)
+    load = pen = None
+    if mean_pressure is not None:
+        load = _real("mean_pressure", mean_pressure, "Pa", lambda v: v > 0.0, "a finite pressure > 0") / estar
+    else:
+        pen = _real("penetration", penetration, "m", lambda v: 0.0 < v <= h,
+                    f"a finite depth in (0, amplitude = {h!r}]") / h
+    return SIScales(Einf / E0, h * k, V * tau * k, load, pen, k, estar, lam, h, tau)
+
+
+@dataclass(frozen=True)
+class SIResult:
+    """One operating point in SI units (lengths m, stresses Pa, speeds m/s).
+
+    ``solution`` is the dimensionless result behind it (either road's result object);
+    ``error_estimate`` is its estimate (dimensionless: absolute for ka, ke, kê, relative
+    otherwise), or None.
+    """
+
+    success: bool
+    message: str
+    full_contact: bool
+    contact_halfwidth: float | None   # a [m] (λ/2 in full contact); None with several patches
+    eccentricity: float | None        # e [m], toward the leading edge; None in full contact
+    pressure_eccentricity: float | None  # ê [m]
+    penetration: float                # Δ [m]
+    mean_separation: float            # s [m]
+    mean_pressure: float              # p∞ [Pa]
+    friction_stress: float            # τf [Pa], positive when it resists the motion
+    friction_coefficient: float       # μ
+    max_pressure: float               # [Pa]
+    x_max_pressure: float             # [m]
+    full_contact_pressure: float | None  # p_FC(V) [Pa], None where the road cannot say
+    threshold_speed: float | None     # V_th [m/s] for this p∞ (0: never full; inf: always)
+    wavelength: float                 # λ [m]
+    amplitude: float                  # h [m]
+    plane_strain_modulus: float       # E0/(1 − ν²) [Pa]
+    error_estimate: Any
+    solution: Any
+
+    def fields(self, x=None) -> Fields:
+        """σ [Pa], v [m] (into the body, from the deformed mean line) and gap [m] at x [m]
+        (default: the solution's own points)."""
+        X = None if x is None else np.asarray(x, dtype=float) / self.wavelength
+        f = self.solution.fields(X)
+        return Fields(f.x_over_lambda, f.pressure * self.plane_strain_modulus,
+                      f.displacement * self.amplitude, f.gap * self.amplitude, units="SI")
+
+
+def result(sol, sc: SIScales, *, full_contact_load=None, threshold_speed=None) -> SIResult:
+    """Build the SI result from a dimensionless one (the result protocol of both roads).
+
+    ``full_contact_load`` is p̃FC(V) and ``threshold_speed`` V_th/V0, when the road knows them.
+    """
+    k = sc.k
+
+    def length(v):
+        return None if v is None else float(v) / k
+
+    return SIResult(
+        success=bool(sol.success), message=str(sol.message), full_contact=bool(sol.full_contact),
+        contact_halfwidth=length(sol.ka), eccentricity=length(sol.ke),
+        pressure_eccentricity=length(sol.ke_hat),
+        penetration=float(sol.penetration) * sc.amplitude,
+        mean_separation=float(sol.separation) * sc.amplitude,
+        mean_pressure=float(sol.load) * sc.estar,
+        friction_stress=float(sol.tau_f) * sc.estar,
+        friction_coefficient=float(sol.mu),
+        max_pressure=float(sol.max_pressure) * sc.estar,
+        x_max_pressure=float(sol.x_max_pressure) * sc.wavelength,
+        full_contact_pressure=None if full_contact_load is None else full_contact_load * sc.estar,
+        threshold_speed=None if threshold_speed is None else threshold_speed / (sc.tau * k),
+        wavelength=sc.wavelength, amplitude=sc.amplitude, plane_strain_modulus=sc.estar,
+        error_estimate=getattr(sol, "error_estimate", None), solution=sol)
