@@ -12,7 +12,9 @@ ratio E∞/E0 and hk.  `dimensional` is a thin SI front on top.
 This package never imports `bem` (the two roads are independent).
 """
 from .full_contact import modulus, threshold_speed, transition_load
-from .solver import Fields, Solution, solve, solve_penetration, validate
+from viscosine import Fields
 
-__all__ = ["Fields", "Solution", "modulus", "solve", "solve_penetration", "threshold_speed",
+from .solver import Solution, solve, validate
+
+__all__ = ["Fields", "Solution", "modulus", "solve", "threshold_speed",
            "transition_load", "validate"]

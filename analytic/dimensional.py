@@ -1,7 +1,7 @@
 """A thin SI front: dimensional inputs in, the same results in SI out.
 
 Nothing here solves anything: inputs are turned into the dimensionless groups of
-`conventions.md`, `solver.solve` / `solver.solve_penetration` does the work, and the outputs are
+`conventions.md`, `solver.solve` does the work, and the outputs are
 scaled back.  Natural units: lengths 1/k = λ/(2π), stresses E0/(1 − ν²), times τ.
 """
 from __future__ import annotations
@@ -104,12 +104,12 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
     ratio, hk, w = Einf / E0, h * k, V * tau * k
     if mean_pressure is not None:
         p = _positive("mean_pressure", mean_pressure, "Pa")
-        sol = solver.solve(p / estar, w, ratio, hk)
+        sol = solver.solve(load=p / estar, speed=w, ratio=ratio, hk=hk)
     else:
         d = _positive("penetration", penetration, "m")
         if d > h:
             raise ValueError(f"penetration = {penetration!r}: must be in (0, amplitude = {h!r}] [m]")
-        sol = solver.solve_penetration(d / h, w, ratio, hk)
+        sol = solver.solve(penetration=d / h, speed=w, ratio=ratio, hk=hk)
     if not sol.success:
         raise RuntimeError(f"the semi-analytic solver did not converge: {sol.message}; "
                            f"residuals {sol.residuals}")

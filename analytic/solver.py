@@ -19,6 +19,7 @@ from scipy.optimize import brentq
 from . import _kernels as K
 from ._closure import Integrals, State, log_sin_half, state
 from .full_contact import friction_stress, modulus
+from viscosine import Fields
 
 #: speeds outside this range are refused: beyond it the viscoelastic corrections (O(w), O(1/w))
 #: are below double precision and the quadrature would need thousands of panels
@@ -65,16 +66,6 @@ def validate(load=None, speed=None, ratio=None, hk=None, penetration=None):
 
 
 @dataclass(frozen=True)
-class Fields:
-    """Fields over one period in the crest frame (conventions.md: CSV columns)."""
-
-    x_over_lambda: np.ndarray
-    pressure: np.ndarray      # σ (1 − ν²)/E0
-    displacement: np.ndarray  # v/h from the mean line of the deformed surface
-    gap: np.ndarray           # gap/h, 0 in contact
-
-
-@dataclass(frozen=True)
 class Solution:
     """One operating point of the semi-analytic solver (SciPy-like result object).
 
@@ -112,9 +103,10 @@ class Solution:
                 "ke_hat": self.ke_hat, "penetration": self.penetration, "tau_f": self.tau_f,
                 "mu": self.mu}
 
-    def fields(self, x_over_lambda=None, n=1001):
-        """Pressure, displacement and gap at x/λ (crest frame; default n points on [−½, ½])."""
-        X = np.linspace(-0.5, 0.5, n) if x_over_lambda is None else np.asarray(x_over_lambda, float)
+    def fields(self, x_over_lambda=None):
+        """Pressure, displacement and gap at x/λ (crest frame; default x/λ = j/1024 − ½)."""
+        X = (np.arange(1024) / 1024 - 0.5 if x_over_lambda is None
+             else np.asarray(x_over_lambda, float))
         hk = self.hk
         if self.full_contact:
             mag, delta = modulus(self.speed, self.ratio)
@@ -276,7 +268,40 @@ def _find_half_angle(fun, y_lo, y_hi):
     return y, info.converged, info.iterations, msg
 
 
-def solve(load, speed, ratio=3.0, hk=1.0):
+def solve(*, load=None, penetration=None, speed, ratio=3.0, hk=1.0):
+    """Solve the steady sliding problem under load or penetration control.
+
+    Parameters
+    ----------
+    load : float, optional
+        p̃∞ = p∞(1 − ν²)/E0 > 0 (load control).
+    penetration : float, optional
+        Δ/h in (0, 1] (penetration control; the load is an output).  Give exactly one of the two.
+    speed : float
+        V/V0 = V τ k ≥ 0 (τ the creep time of eq. 2.3).
+    ratio : float
+        E∞/E0 > 1.
+    hk : float
+        Amplitude times wavenumber, > 0.
+
+    Returns
+    -------
+    Solution
+        `success` is False, with the residuals, when the root search or the closure failed.
+
+    References
+    ----------
+    Eqs (2.7)–(2.15), (3.1) and Appendices A–B of the paper.
+    """
+    if (load is None) == (penetration is None):
+        raise ValueError(f"load = {load!r}, penetration = {penetration!r}: give exactly one of "
+                         "load and penetration")
+    if load is not None:
+        return _solve_load(load, speed, ratio, hk)
+    return _solve_penetration(penetration, speed, ratio, hk)
+
+
+def _solve_load(load, speed, ratio=3.0, hk=1.0):
     """Solve the steady sliding problem at given mean pressure (load control).
 
     Parameters
@@ -321,7 +346,7 @@ def solve(load, speed, ratio=3.0, hk=1.0):
     return _make_partial(st, load, speed, ratio, hk, nit, nfev[0], abs(st.Pbar / target - 1.0), ok, msg)
 
 
-def solve_penetration(penetration, speed, ratio=3.0, hk=1.0):
+def _solve_penetration(penetration, speed, ratio=3.0, hk=1.0):
     """Solve at given penetration Δ/h in (0, 1] (figures 3b, 6, 7); the load is an output.
 
     Δ/h = 1 is the transition itself: full contact at the smallest load that keeps it.

@@ -31,7 +31,7 @@ import numpy as np
 
 from . import _kernels
 from ._influence import influence_coefficients_nd
-from ._inputs import Prony, _Profile, _bad
+from ._inputs import Prony, Sinusoid, _Profile, _bad
 from ._operator import CirculantOperator, gmres
 from ._result import BemResult, Patch
 
@@ -343,27 +343,33 @@ def _check_real(name, value, allowed, test):
     return v
 
 
-def solve(profile, material, speed, nodes, *, load=None, penetration=None, tol=1e-10,
-          max_outer=50, nested=True, coarsest=256, level_ratio=4, restart=40,
-          max_inner=600) -> BemResult:
+def solve(*, load=None, penetration=None, speed, profile=None, material=None, ratio=None,
+          hk=None, nodes=4096, tol=1e-10, max_outer=50, nested=True, coarsest=256,
+          level_ratio=4, restart=40, max_inner=600) -> BemResult:
     """Steady sliding of a rigid periodic indenter on a viscoelastic half-plane (eq. 2.4-2.5).
 
     Parameters
     ----------
-    profile : Sinusoid, Harmonics or SampledProfile
-        The indenter, ``k y`` over one period, crest of the sinusoid at X = 0.
-    material : Prony
-        Creep function (compliances in ``1/E_ref``, times in ``tau_ref``).
-    speed : float
-        ``w = V tau_ref k >= 0`` (``V/V0`` of the paper for the standard linear solid).
-    nodes : int
-        Panels per period, ``N >= 8``.
     load : float, optional
         Mean pressure ``p (1 - nu^2)/E_ref > 0`` (load control).
     penetration : float, optional
         ``Delta/h`` in (0, 1] (penetration control; the load is an output).  At 1
         the contact is full and the load is not unique: the smallest one (the
-        full-contact threshold) is returned.
+        full-contact threshold) is returned.  Give exactly one of the two.
+    speed : float
+        ``w = V tau_ref k >= 0`` (``V/V0`` of the paper for the standard linear solid).
+    profile : Sinusoid, Harmonics or SampledProfile, optional
+        The indenter, ``k y`` over one period, crest of the sinusoid at X = 0; default
+        ``Sinusoid(hk)``.
+    material : Prony, optional
+        Creep function (compliances in ``1/E_ref``, times in ``tau_ref``); default the
+        standard linear solid with ``ratio``.
+    ratio : float, optional
+        ``E_inf/E0`` of the default standard linear solid (default 3); not with ``material``.
+    hk : float, optional
+        Amplitude of the default sinusoid (default 1); not with ``profile``.
+    nodes : int
+        Panels per period, ``N >= 8``.
     tol : float
         Bound on the 2-norm of the residual of each Krylov solve, relative to the
         amplitude h k (so on every gap on the contact, in units of h, and on the
@@ -388,6 +394,14 @@ def solve(profile, material, speed, nodes, *, load=None, penetration=None, tol=1
     ----------
     Eq. (2.2)-(2.5) (operator), (3.1) (friction), Appendix B (full contact).
     """
+    if profile is None:
+        profile = Sinusoid(1.0 if hk is None else hk)
+    elif hk is not None:
+        raise _bad("hk", hk, f"no hk with profile={profile!r}: the profile fixes the amplitude")
+    if material is None:
+        material = Prony.standard_linear_solid(3.0 if ratio is None else ratio)
+    elif ratio is not None:
+        raise _bad("ratio", ratio, "no ratio with material=...: the Prony series fixes the moduli")
     if not isinstance(profile, _Profile):
         raise _bad("profile", profile, "a bem.Sinusoid, bem.Harmonics or bem.SampledProfile")
     if not isinstance(material, Prony):

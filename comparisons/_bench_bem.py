@@ -65,7 +65,7 @@ def table_elastic_limits(exponents, load, out) -> None:
         for e in exponents:
             n = 2**e
             _progress(f"elastic limit speed {speed:g} N {n}")
-            r = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load)
+            r = bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=n, load=load)
             if not r.success:
                 print(f"{n:>8} NOT CONVERGED: {r.message}", file=out)
                 continue
@@ -95,7 +95,7 @@ def table_full_contact(nodes, out) -> None:
           f"{'ke_hat err':>11}", file=out)
     for speed in (1e-3, 1e-2, 0.1, 1.0, 10.0, 100.0, 1e3):
         _progress(f"full contact speed {speed:g}")
-        r = bem.solve(bem.Sinusoid(1.0), mat, speed, nodes, load=load)
+        r = bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=nodes, load=load)
         mu, kehat = _appendix_b_mu(mat, speed, load, 1.0)
         if not (r.success and r.full_contact):
             print(f"{speed:>8g} unexpected: success={r.success} full={r.full_contact}", file=out)
@@ -117,8 +117,8 @@ def table_iterations(exponents, out) -> None:
     for e in exponents:
         n = 2**e
         _progress(f"iterations N {n}")
-        a = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load)
-        b = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load, nested=False)
+        a = bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=n, load=load)
+        b = bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=n, load=load, nested=False)
         print(f"{n:>8} {a.nit:>10} {str(a.inner_iterations):>18} {b.nit:>10} "
               f"{str(b.inner_iterations):>40}", file=out)
 
@@ -126,7 +126,7 @@ def table_iterations(exponents, out) -> None:
 def _timed(n, speed, load):
     mat = bem.Prony.standard_linear_solid(3.0)
     t0 = time.perf_counter()
-    r = bem.solve(bem.Sinusoid(1.0), mat, speed, n, load=load)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=n, load=load)
     return time.perf_counter() - t0, r
 
 

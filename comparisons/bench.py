@@ -46,7 +46,7 @@ def analytic_sweep(points=1000):
     t0 = time.perf_counter()
     for p in loads:
         for s in speeds:
-            analytic.solve(p, s)
+            analytic.solve(load=p, speed=s)
     inproc = time.perf_counter() - t0
     print("| what | points | wall time [s] | per point [ms] |")
     print("| --- | ---: | ---: | ---: |")

@@ -51,7 +51,7 @@ def differences(nodes, grid=GRID, run=runner.run):
     """
     rows = []
     for (label, *_), spec in zip(grid, specs(nodes, grid)):
-        ref = analytic.solve(spec["load"], spec["speed"], spec["ratio"], spec["hk"]).as_dict()
+        ref = analytic.solve(load=spec["load"], speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"]).as_dict()
         out = run(spec)
         diff = {}
         if out["ok"]:

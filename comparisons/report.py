@@ -148,8 +148,8 @@ def _progress(i, n, t0, spec, out):
 
 # ---------------------------------------------------------------------------- analytic curves
 def _solve(load=None, speed=1.0, pen=None):
-    sol = analytic.solve(load, speed, RATIO, HK) if pen is None else \
-        analytic.solve_penetration(pen, speed, RATIO, HK)
+    sol = analytic.solve(load=load, speed=speed, ratio=RATIO, hk=HK) if pen is None else \
+        analytic.solve(penetration=pen, speed=speed, ratio=RATIO, hk=HK)
     if not sol.success:
         raise RuntimeError(f"semi-analytic solver failed at load={load}, Δ={pen}, V={speed}: "
                            f"{sol.message} {sol.residuals}")

@@ -78,9 +78,11 @@ def run(spec, fields=False):
     if spec["solver"] == "analytic":
         import analytic
         if spec.get("load") is not None:
-            sol = analytic.solve(spec["load"], spec["speed"], spec["ratio"], spec["hk"])
+            sol = analytic.solve(load=spec["load"], speed=spec["speed"], ratio=spec["ratio"],
+                                 hk=spec["hk"])
         else:
-            sol = analytic.solve_penetration(spec["penetration"], spec["speed"], spec["ratio"], spec["hk"])
+            sol = analytic.solve(penetration=spec["penetration"], speed=spec["speed"],
+                                 ratio=spec["ratio"], hk=spec["hk"])
         if not sol.success:
             out["error"] = f"{sol.message}; residuals {sol.residuals}"
         else:
@@ -95,8 +97,8 @@ def run(spec, fields=False):
         import bem
         profile, material = _bem_problem(spec)
         nodes = spec.get("nodes") or DEFAULT_NODES
-        res = bem.solve(profile, material, spec["speed"], nodes, load=spec.get("load"),
-                        penetration=spec.get("penetration"))
+        res = bem.solve(profile=profile, material=material, speed=spec["speed"], nodes=nodes,
+                        load=spec.get("load"), penetration=spec.get("penetration"))
         if not res.success:
             out["error"] = f"{res.message}; residuals {res.residuals}"
         else:

@@ -29,14 +29,14 @@ def test_solve_bad_input(name, value):
 @pytest.mark.parametrize("value", [0.0, -0.5, 1.0000001, 2.0, math.nan])
 def test_solve_penetration_bad_input(value):
     with pytest.raises(ValueError, match=r"penetration = .*must be .*in \(0, 1\]"):
-        analytic.solve_penetration(value, 1.0)
+        analytic.solve(penetration=value, speed=1.0)
 
 
 def test_non_numbers_are_refused():
     with pytest.raises(ValueError, match="load"):
-        analytic.solve("0.3", 1.0)
+        analytic.solve(load="0.3", speed=1.0)
     with pytest.raises(ValueError, match="speed"):
-        analytic.solve(0.3, True)
+        analytic.solve(load=0.3, speed=True)
 
 
 def _cli(*args):

@@ -37,7 +37,7 @@ def test_grid_10_loads_20_speeds(ratio):
     nfull = 0
     for load in loads:
         for speed in SPEEDS:
-            sol = analytic.solve(load, speed, ratio, hk)
+            sol = analytic.solve(load=load, speed=speed, ratio=ratio, hk=hk)
             nfull += sol.full_contact
             _check_point(sol)
     assert 0 < nfull < loads.size * SPEEDS.size  # the grid crosses the transition
@@ -50,7 +50,7 @@ def test_whole_range(ratio, hk):
     for speed in (1e-4, 1e-2, 1.0, 1e2, 1e4):
         pfc = analytic.transition_load(speed, ratio, hk)
         for f in (1e-3, 0.3, 0.999, 1.5):
-            sol = analytic.solve(f * pfc, speed, ratio, hk)
+            sol = analytic.solve(load=f * pfc, speed=speed, ratio=ratio, hk=hk)
             assert sol.full_contact == (f >= 1.0)
             _check_point(sol)
 
@@ -58,9 +58,9 @@ def test_whole_range(ratio, hk):
 @pytest.mark.parametrize("speed", [0.01, 0.5, 2.0, 100.0])
 def test_penetration_control_inverts_load_control(speed):
     for pen in (0.05, 0.5, 0.9, 0.999):
-        sp = analytic.solve_penetration(pen, speed)
+        sp = analytic.solve(penetration=pen, speed=speed)
         assert sp.success and sp.penetration == pytest.approx(pen, rel=ROUNDOFF)
-        sl = analytic.solve(sp.load, speed)
+        sl = analytic.solve(load=sp.load, speed=speed)
         assert sl.ka == pytest.approx(sp.ka, rel=ROUNDOFF)
         assert sl.ke == pytest.approx(sp.ke, rel=1e-11)
         assert sl.penetration == pytest.approx(pen, rel=ROUNDOFF)
@@ -69,7 +69,7 @@ def test_penetration_control_inverts_load_control(speed):
 
 def test_penetration_one_is_the_transition_load():
     for speed in (0.1, 3.0):
-        sol = analytic.solve_penetration(1.0, speed)
+        sol = analytic.solve(penetration=1.0, speed=speed)
         assert sol.full_contact
         assert sol.load == pytest.approx(analytic.transition_load(speed), rel=ROUNDOFF)
 
@@ -77,8 +77,8 @@ def test_penetration_one_is_the_transition_load():
 def test_fixed_penetration_gives_the_same_profile_at_both_speed_limits():
     """Figure 3b: at fixed Δ the elastic limits E0 and E∞ give the same displacement field."""
     X = np.linspace(-0.5, 0.5, 401)
-    lo = analytic.solve_penetration(0.8, 1e-12).fields(X)
-    hi = analytic.solve_penetration(0.8, 1e12).fields(X)
+    lo = analytic.solve(penetration=0.8, speed=1e-12).fields(X)
+    hi = analytic.solve(penetration=0.8, speed=1e12).fields(X)
     assert np.max(np.abs(lo.displacement - hi.displacement)) < 1e-9
 
 
@@ -86,10 +86,10 @@ def test_paper_statements_on_eccentricities():
     """e < ê in partial contact (figure 11), both positive (toward the leading edge); the contact
     shrinks with speed at fixed load (figure 5) and has its minimum near V0 at fixed Δ (figure 7)."""
     for speed in (0.1, 1.0, 10.0):
-        sol = analytic.solve(0.3, speed)
+        sol = analytic.solve(load=0.3, speed=speed)
         assert 0 < sol.ke < sol.ke_hat
-    kas = [analytic.solve(0.3, s).ka for s in np.logspace(-2, 2, 9)]
+    kas = [analytic.solve(load=0.3, speed=s).ka for s in np.logspace(-2, 2, 9)]
     assert np.all(np.diff(kas) < 0)
     speeds = np.logspace(-2, 2, 41)
-    kas = [analytic.solve_penetration(0.8, s).ka for s in speeds]
+    kas = [analytic.solve(penetration=0.8, speed=s).ka for s in speeds]
     assert 0.3 < speeds[int(np.argmin(kas))] < 3.0

@@ -46,7 +46,7 @@ def test_si_matches_the_dimensionless_groups():
     r = solve_si(**BASE, mean_pressure=1e6)
     k = 2 * math.pi / BASE["wavelength"]
     estar = BASE["E0"] / (1 - BASE["nu"] ** 2)
-    sol = analytic.solve(1e6 / estar, BASE["speed"] * BASE["tau"] * k, 3.0, BASE["amplitude"] * k)
+    sol = analytic.solve(load=1e6 / estar, speed=BASE["speed"] * BASE["tau"] * k, ratio=3.0, hk=BASE["amplitude"] * k)
     assert r.contact_halfwidth * k == pytest.approx(sol.ka, rel=ROUNDOFF)
     assert r.friction_coefficient == pytest.approx(sol.mu, rel=ROUNDOFF)
 

@@ -42,7 +42,7 @@ def appendix_b(speed, ratio, hk):
 @pytest.mark.parametrize("speed", [1e-3, 0.1, 1.0, 3.0, 10.0, 1e3])
 def test_full_contact_against_appendix_b(speed):
     load = 2.0 * analytic.transition_load(speed, RHO, HK)
-    sol = analytic.solve(load, speed, RHO, HK)
+    sol = analytic.solve(load=load, speed=speed, ratio=RHO, hk=HK)
     assert sol.full_contact and sol.ka == math.pi and sol.ke is None and sol.penetration == 1.0
     amp, phase, ft = appendix_b(speed, RHO, HK)
     assert sol.ke_hat == pytest.approx(phase, rel=ROUNDOFF, abs=1e-15)
@@ -57,7 +57,7 @@ def test_friction_is_load_independent_in_full_contact():
     """(B8): τf does not depend on the load, so μ falls as 1/p∞ (figure 12)."""
     speed = 1.0
     pfc = analytic.transition_load(speed, RHO, HK)
-    taus = [analytic.solve(f * pfc, speed, RHO, HK).tau_f for f in (1.0, 1.5, 3.0)]
+    taus = [analytic.solve(load=f * pfc, speed=speed, ratio=RHO, hk=HK).tau_f for f in (1.0, 1.5, 3.0)]
     assert np.ptp(taus) < ROUNDOFF * taus[0]
 
 
@@ -80,11 +80,11 @@ def test_partial_contact_joins_full_contact_at_the_transition(speed):
     """Just below p̃FC: ka → π, ke and kê → the loss angle, τf → Appendix B (continuity)."""
     pfc = analytic.transition_load(speed, RHO, HK)
     mag, delta = modulus(speed, RHO)
-    above = analytic.solve(pfc * (1 + 1e-12), speed, RHO, HK)
+    above = analytic.solve(load=pfc * (1 + 1e-12), speed=speed, ratio=RHO, hk=HK)
     assert above.full_contact
     gaps = []
     for eps in (1e-4, 1e-8, 1e-12):
-        below = analytic.solve(pfc * (1 - eps), speed, RHO, HK)
+        below = analytic.solve(load=pfc * (1 - eps), speed=speed, ratio=RHO, hk=HK)
         assert below.success and not below.full_contact
         gaps.append(math.pi - below.ka)
         assert below.ke == pytest.approx(delta, abs=3 * eps ** 0.5)
@@ -100,6 +100,6 @@ def test_partial_contact_joins_full_contact_at_the_transition(speed):
 def test_threshold_speed_separates_full_and_partial_contact():
     load = 1.0
     vth = analytic.threshold_speed(load, RHO, HK)
-    assert analytic.solve(load, vth * (1 - 1e-9), RHO, HK).full_contact
-    sol = analytic.solve(load, vth * (1 + 1e-6), RHO, HK)
+    assert analytic.solve(load=load, speed=vth * (1 - 1e-9), ratio=RHO, hk=HK).full_contact
+    sol = analytic.solve(load=load, speed=vth * (1 + 1e-6), ratio=RHO, hk=HK)
     assert not sol.full_contact and sol.ka > math.pi - 1e-2

@@ -28,7 +28,7 @@ def test_westergaard_at_extreme_speeds(speed, fraction):
     """a, Δ and σ(x) within 1e-9 of Westergaard (E0 / E∞), where V-corrections are ~1e-11."""
     m = _modulus(speed)
     load = fraction * westergaard.full_contact_load(HK, m)
-    sol = analytic.solve(load, speed, RHO, HK)
+    sol = analytic.solve(load=load, speed=speed, ratio=RHO, hk=HK)
     assert sol.success and not sol.full_contact
     assert sol.ka == pytest.approx(westergaard.half_angle(load, HK, m), rel=LIMIT)
     assert sol.penetration == pytest.approx(westergaard.penetration(load, HK, m), rel=LIMIT)
@@ -45,7 +45,7 @@ def test_penetration_at_speeds_1e6(fraction):
     for speed in (1e-6, 1e6):
         m = _modulus(speed)
         load = fraction * westergaard.full_contact_load(HK, m)
-        sol = analytic.solve(load, speed, RHO, HK)
+        sol = analytic.solve(load=load, speed=speed, ratio=RHO, hk=HK)
         assert sol.penetration == pytest.approx(westergaard.penetration(load, HK, m), rel=LIMIT)
         if speed > 1.0:
             assert sol.ka == pytest.approx(westergaard.half_angle(load, HK, m), rel=LIMIT)
@@ -57,7 +57,7 @@ def test_deviation_from_westergaard_is_linear_in_speed():
     def dev(speed):
         m = _modulus(speed)
         ld = load * m
-        sol = analytic.solve(ld, speed, RHO, HK)
+        sol = analytic.solve(load=ld, speed=speed, ratio=RHO, hk=HK)
         da = sol.ka - westergaard.half_angle(ld, HK, m)
         ds = np.max(np.abs(sol.fields(X).pressure - westergaard.pressure(X, ld, HK, m)))
         return da, ds
@@ -79,14 +79,14 @@ def test_low_speed_shift_of_the_half_width(load):
     for ratio in (3.0, 10.0):
         w = 1e-7
         half = 0.5 * (1.0 - 1.0 / ratio)
-        sol = analytic.solve(load, w, ratio, HK)
+        sol = analytic.solve(load=load, speed=w, ratio=ratio, hk=HK)
         assert (sol.ka - westergaard.half_angle(load, HK)) / w == pytest.approx(-half, rel=1e-5)
         assert sol.ke / w == pytest.approx(half, rel=1e-5)
 
 
 def test_speed_zero_is_westergaard_exactly():
     for load in (0.01, 0.2, 0.49):
-        sol = analytic.solve(load, 0.0, RHO, HK)
+        sol = analytic.solve(load=load, speed=0.0, ratio=RHO, hk=HK)
         assert sol.ke == 0.0 and sol.mu == 0.0
         assert sol.ka == pytest.approx(westergaard.half_angle(load, HK), rel=ROUNDOFF)
         assert sol.penetration == pytest.approx(westergaard.penetration(load, HK), rel=ROUNDOFF)
@@ -102,9 +102,9 @@ def test_hunter_limit_at_vanishing_load(z):
         load = 0.5 * HK * Pbar
         w = 2.0 * math.sqrt(Pbar / h.load_factor) / z
         for _ in range(40):  # fixed point on V so that ka/(V/V0) = z
-            sol = analytic.solve(load, w, RHO, HK)
+            sol = analytic.solve(load=load, speed=w, ratio=RHO, hk=HK)
             w = sol.ka / z
-        sol = analytic.solve(load, w, RHO, HK)
+        sol = analytic.solve(load=load, speed=w, ratio=RHO, hk=HK)
         A = sol.ka
         err = max(abs(sol.ke / A / h.e_over_a - 1), abs(sol.ke_hat / A / h.e_hat_over_a - 1),
                   abs(Pbar / math.sin(A / 2) ** 2 / h.load_factor - 1),
@@ -143,7 +143,7 @@ def test_hunter_halfwidth_at_given_load_matches_the_periodic_solver():
     for z in (0.5, 2.0):
         h = hunter.solve(z, RHO)
         w = 2.0 * math.sqrt(Pbar / h.load_factor) / z
-        sol = analytic.solve(load, w, RHO, HK)
+        sol = analytic.solve(load=load, speed=w, ratio=RHO, hk=HK)
         R = 1.0 / HK                      # k R = 1/(hk)
         W_over_EstarR = load * 2 * math.pi / R  # W/(E* R) in units with k = 1
         a = hunter.halfwidth(W_over_EstarR, w / R, RHO) * R

@@ -14,8 +14,7 @@ SIN = bem.Sinusoid(1.0)
 def _solve(**kw):
     args = dict(profile=SIN, material=SLS, speed=1.0, nodes=64, load=0.3)
     args.update(kw)
-    return bem.solve(args.pop("profile"), args.pop("material"), args.pop("speed"),
-                     args.pop("nodes"), **args)
+    return bem.solve(**args)
 
 
 @pytest.mark.parametrize("kw,pattern", [

@@ -27,8 +27,8 @@ def test_relaxation_times_are_zeros_of_the_laplace_compliance():
 
 def test_unresolved_layer_is_reported():
     sls = bem.Prony.standard_linear_solid(3.0)
-    r = bem.solve(bem.Sinusoid(1.0), sls, 1e-6, 1024, load=0.3)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=sls, speed=1e-6, nodes=1024, load=0.3)
     assert r.success and r.memory_layer_panels == pytest.approx(1e-6 / 3 * 1024 / (2 * math.pi), rel=1e-12)
     assert "memory layer" in r.message
-    r = bem.solve(bem.Sinusoid(1.0), sls, 1.0, 1024, load=0.3)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=sls, speed=1.0, nodes=1024, load=0.3)
     assert r.memory_layer_panels > 50 and "memory layer" not in r.message

@@ -58,7 +58,7 @@ def test_westergaard_limits_and_observed_order(speed, modulus):
         sq = np.zeros(3)
         for load in loads:
             ref = westergaard(load, 1.0, modulus)
-            r = bem.solve(bem.Sinusoid(1.0), SLS, speed, int(n), load=load)
+            r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=int(n), load=load)
             assert r.success and not r.full_contact and len(r.patches) == 1
             sq += np.array([r.ka - ref["ka"], r.penetration - ref["penetration"],
                             r.pressure.max() - ref["peak"]]) ** 2
@@ -76,7 +76,7 @@ def test_westergaard_pressure_profile():
     sigma(X_j) away from the edges (collocation: sigma_j = sigma - h^2 sigma''/24)."""
     n = 4096
     ref = westergaard(0.3, 1.0, 1.0)
-    r = bem.solve(bem.Sinusoid(1.0), bem.Prony(1.0), 0.0, n, load=0.3)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=bem.Prony(1.0), speed=0.0, nodes=n, load=0.3)
     a = ref["ka"] / (2 * np.pi)
     inner = np.abs(r.x_over_lambda) < 0.8 * a
     err = np.max(np.abs(r.pressure[inner] - ref["pressure"](r.x_over_lambda[inner])))
@@ -95,7 +95,7 @@ def test_full_contact_appendix_b(speed):
     tau_f = (hk)^2 Im J* / (4 |J*|^2) > 0, k e_hat = arg J*(1) (the pressure leads)."""
     n, load = 1024, 2.0
     ref = full_contact([1.0], [0.0], load, SLS.j_plus, SLS.terms, speed)
-    r = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, load=load)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, load=load)
     assert r.success and r.full_contact and r.nit == 1
     assert r.ka == np.pi and r.ke is None and r.contact_fraction == 1.0
     assert r.penetration == 1.0 and r.separation == 0.0
@@ -114,7 +114,7 @@ def test_full_contact_two_term_prony(speed):
     # for N = 1024 (mu error 4.5e-8 measured at w = 0.5); N = 4096 divides it by 64
     n, load = 4096, 3.0
     ref = full_contact([1.0], [0.0], load, TWO_TERM.j_plus, TWO_TERM.terms, speed)
-    r = bem.solve(bem.Sinusoid(1.0), TWO_TERM, speed, n, load=load)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=TWO_TERM, speed=speed, nodes=n, load=load)
     assert r.success and r.full_contact
     assert abs(r.mu - ref["mu"]) < TOL_FULL_MU * ref["mu"]
     assert abs(r.ke_hat - np.angle(_jstar1(TWO_TERM, speed))) < TOL_FULL_PHASE
@@ -125,7 +125,7 @@ def test_full_contact_multi_harmonic():
     amps, phases = [1.0, 0.3, 0.1], [0.0, 0.5, -1.0]
     n, load, speed = 4096, 3.0, 0.7
     ref = full_contact(amps, phases, load, SLS.j_plus, SLS.terms, speed)
-    r = bem.solve(bem.Harmonics(amps, phases), SLS, speed, n, load=load)
+    r = bem.solve(profile=bem.Harmonics(amps, phases), material=SLS, speed=speed, nodes=n, load=load)
     assert r.success and r.full_contact
     # harmonic n carries an aliasing error ~ 8 (n/N)^3: N = 4096 keeps it below 1e-8
     assert abs(r.mu - ref["mu"]) < TOL_FULL_MU * ref["mu"]
@@ -140,10 +140,10 @@ def test_full_contact_threshold_and_transition():
     """Threshold load hk/2 |E*|/E0 = hk/(2|J*(1)|); just above: full, just below: partial."""
     speed, n = 1.0, 1024
     p_fc = 1.0 / (2.0 * abs(_jstar1(SLS, speed)))
-    above = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, load=p_fc * 1.001)
-    below = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, load=p_fc * 0.999)
+    above = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, load=p_fc * 1.001)
+    below = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, load=p_fc * 0.999)
     assert above.full_contact and not below.full_contact and below.contact_fraction > 0.9
-    top = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, penetration=1.0)
+    top = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, penetration=1.0)
     # Delta = h: the smallest full-contact load, -min over the collocation points
     # of the discrete pressure sigma(X_j)/sinc(pi/N): the sampled minimum of the
     # shifted cosine lies within (pi/N)^2/2 of the true one
@@ -155,7 +155,7 @@ def test_full_contact_threshold_and_transition():
 
 def test_constraints_at_intermediate_speed():
     n, load, speed = 4096, 0.3, 1.0
-    r = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, load=load)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, load=load)
     assert r.success and r.status == 0 and r.message == "converged"
     assert not r.full_contact and len(r.patches) == 1
     assert np.all(r.pressure >= 0.0) and np.all(r.gap >= -TOL_CONSTRAINT)
@@ -183,9 +183,8 @@ def test_constraints_at_intermediate_speed():
 
 def test_penetration_control_inverts_load_control():
     n, speed = 2048, 0.8
-    by_load = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, load=0.4, tol=1e-13)
-    by_pen = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, penetration=by_load.penetration,
-                       tol=1e-13)
+    by_load = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, load=0.4, tol=1e-13)
+    by_pen = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, penetration=by_load.penetration, tol=1e-13)
     assert by_pen.success
     assert abs(by_pen.load - 0.4) < TOL_INVERSE * 0.4
     assert abs(by_pen.ka - by_load.ka) < TOL_INVERSE
@@ -195,7 +194,7 @@ def test_penetration_control_inverts_load_control():
 def test_several_patches_per_period():
     """k y = cos 2 pi X + 0.6 cos 8 pi X has local crests at X = 0, +-1/4 and 1/2."""
     prof = bem.Harmonics([1.0, 0.0, 0.0, 0.6], [0.0, 0.0, 0.0, 0.0])
-    r = bem.solve(prof, bem.Prony(1.0), 0.0, 4096, load=0.35)
+    r = bem.solve(profile=prof, material=bem.Prony(1.0), speed=0.0, nodes=4096, load=0.35)
     assert r.success and len(r.patches) == 4
     centres = sorted(0.5 * (p.trailing_edge + p.leading_edge) for p in r.patches)
     assert centres[0] == pytest.approx(-0.5, abs=1e-9)  # the patch across X = +-1/2
@@ -206,7 +205,7 @@ def test_several_patches_per_period():
     assert r.contact_fraction == pytest.approx(
         sum(p.leading_edge - p.trailing_edge for p in r.patches), rel=1e-15)
     # viscoelastic: the outer patches differ (the material remembers the crest)
-    v = bem.solve(prof, SLS, 1.0, 4096, load=0.35)
+    v = bem.solve(profile=prof, material=SLS, speed=1.0, nodes=4096, load=0.35)
     assert v.success and v.patches
 
 
@@ -219,8 +218,8 @@ def test_sampled_profile_is_its_trigonometric_interpolant():
                   for i, (a, p) in enumerate(zip(amps, phases)))
     samp = bem.SampledProfile(heights + 5.0)  # the mean line is irrelevant
     assert samp.amplitude == pytest.approx(harm.amplitude, rel=1e-13)
-    r1 = bem.solve(harm, SLS, 0.5, 512, load=0.4)
-    r2 = bem.solve(samp, SLS, 0.5, 512, load=0.4)
+    r1 = bem.solve(profile=harm, material=SLS, speed=0.5, nodes=512, load=0.4)
+    r2 = bem.solve(profile=samp, material=SLS, speed=0.5, nodes=512, load=0.4)
     assert r1.success and r2.success
     assert np.max(np.abs(r1.pressure - r2.pressure)) < TOL_SAME
     assert abs(r1.penetration - r2.penetration) < TOL_SAME
@@ -229,31 +228,31 @@ def test_sampled_profile_is_its_trigonometric_interpolant():
 def test_units_invariance():
     """E_ref -> c E_ref scales pressures; tau_ref -> c tau_ref scales the speed."""
     n, speed, load = 1024, 0.6, 0.3
-    base = bem.solve(bem.Sinusoid(1.0), SLS, speed, n, load=load)
+    base = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=n, load=load)
     c = 2.5
     stiff = bem.Prony(SLS.J0 / c, tuple(j / c for j in SLS.J), SLS.tau)
-    r = bem.solve(bem.Sinusoid(1.0), stiff, speed, n, load=load * c)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=stiff, speed=speed, nodes=n, load=load * c)
     assert abs(r.penetration - base.penetration) < TOL_SAME
     assert np.max(np.abs(r.pressure / c - base.pressure)) < TOL_SAME
     slow = bem.Prony(SLS.J0, SLS.J, tuple(t * c for t in SLS.tau))
-    r = bem.solve(bem.Sinusoid(1.0), slow, speed / c, n, load=load)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=slow, speed=speed / c, nodes=n, load=load)
     assert abs(r.penetration - base.penetration) < TOL_SAME
     assert abs(r.mu - base.mu) < TOL_SAME
 
 
 def test_nested_and_single_grid_agree():
-    a = bem.solve(bem.Sinusoid(1.0), SLS, 2.0, 4096, load=0.5)
-    b = bem.solve(bem.Sinusoid(1.0), SLS, 2.0, 4096, load=0.5, nested=False)
+    a = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=2.0, nodes=4096, load=0.5)
+    b = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=2.0, nodes=4096, load=0.5, nested=False)
     assert len(a.levels) > 1 and len(b.levels) == 1 and b.nit > a.nit
     assert np.max(np.abs(a.pressure - b.pressure)) < TOL_SAME
     assert abs(a.ka - b.ka) < TOL_SAME
 
 
 def test_non_convergence_is_reported_not_answered():
-    r = bem.solve(bem.Sinusoid(1.0), SLS, 1.0, 1024, load=0.05, nested=False, max_outer=1)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, nodes=1024, load=0.05, nested=False, max_outer=1)
     assert not r.success and r.status == 1
     assert r.message.startswith("not converged") and "interpenetration" in r.message
-    r = bem.solve(bem.Sinusoid(1.0), SLS, 1.0, 1024, load=0.3, nested=False, max_inner=2)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, nodes=1024, load=0.3, nested=False, max_inner=2)
     assert not r.success and r.status == 2 and "krylov" in r.message
 
 
@@ -261,7 +260,7 @@ def test_friction_estimates_agree_in_partial_contact():
     """Dissipation and direct estimates of tau_f differ by discretisation only."""
     prev = None
     for n in (1024, 4096, 16384):
-        r = bem.solve(bem.Sinusoid(1.0), SLS, 1.0, n, load=0.3)
+        r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, nodes=n, load=0.3)
         mism = r.residuals["friction_mismatch"]
         if prev is not None:
             assert mism < prev / 4.0

@@ -28,7 +28,7 @@ def test_point_prints_one_json_object_with_every_key(tmp_path):
     assert len(lines) == 1
     rec = json.loads(lines[0])
     assert KEYS <= set(rec)
-    ref = analytic.solve(0.3, 1.0)
+    ref = analytic.solve(load=0.3, speed=1.0)
     assert rec["ka"] == ref.ka and rec["mu"] == ref.mu and rec["full_contact"] is False
     with open(csv_path) as fh:
         rows = list(csv.reader(fh))
@@ -44,7 +44,7 @@ def test_point_with_penetration_reports_the_load():
     proc = _cli("point", "--solver", "analytic", "--penetration", "0.8", "--speed", "1")
     rec = json.loads(proc.stdout)
     assert rec["penetration"] == pytest.approx(0.8, rel=1e-13)
-    assert rec["load"] == pytest.approx(analytic.solve_penetration(0.8, 1.0).load, rel=1e-15)
+    assert rec["load"] == pytest.approx(analytic.solve(penetration=0.8, speed=1.0).load, rel=1e-15)
 
 
 def test_full_contact_ke_is_null():
@@ -60,7 +60,7 @@ def test_sweep_order_loads_outer_speeds_inner(workers):
     recs = [json.loads(line) for line in proc.stdout.strip().splitlines()]
     assert [(r["load"], r["speed"]) for r in recs] == [(l, s) for l in (0.2, 0.8) for s in (0.1, 1.0, 10.0)]
     for r in recs:
-        assert r == analytic.solve(r["load"], r["speed"]).as_dict()
+        assert r == analytic.solve(load=r["load"], speed=r["speed"]).as_dict()
 
 
 def test_unconverged_point_is_reported_not_printed(monkeypatch, capsys):

@@ -76,10 +76,10 @@ def test_low_speed_half_width_shift_is_first_order(speed, nodes, tol):
     import bem
     import analytic
     from analytic import westergaard
-    a = analytic.solve(0.3, speed)
+    a = analytic.solve(load=0.3, speed=speed)
     shift = a.ka - westergaard.half_angle(0.3, 1.0)
     assert shift == pytest.approx(-(1.0 - 1.0 / 3.0) * speed / 2.0, rel=0.02)
-    r = bem.solve(bem.Sinusoid(1.0), bem.Prony.standard_linear_solid(3.0), speed, nodes, load=0.3)
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=bem.Prony.standard_linear_solid(3.0), speed=speed, nodes=nodes, load=0.3)
     assert r.memory_layer_panels > 10
     assert abs(r.ka - a.ka) < tol and abs(r.ke - a.ke) < tol
     assert abs(r.ka - a.ka) < 0.02 * abs(shift)  # the test discriminates the shift

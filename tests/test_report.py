@@ -70,7 +70,7 @@ def test_bem_sweep_and_point_with_files(tmp_path):
     assert [(r["load"], r["speed"]) for r in recs] == [(0.3, 0.5), (0.3, 2.0), (1.0, 0.5), (1.0, 2.0)]
     assert all(r["solver"] == "bem" and r["nodes"] == 512 and r["iterations"] >= 0 for r in recs)
     import analytic
-    assert [r["full_contact"] for r in recs] == [analytic.solve(r["load"], r["speed"]).full_contact
+    assert [r["full_contact"] for r in recs] == [analytic.solve(load=r["load"], speed=r["speed"]).full_contact
                                                 for r in recs] == [False, False, True, True]
     # a two-harmonic profile and a two-term Prony series read from files
     (tmp_path / "profile.txt").write_text("# k y over one period\n" + "\n".join(
