@@ -2,9 +2,10 @@
 
 No numerics here: a sweep solves every (load or penetration, speed) pair — loads in the outer
 loop, speeds in the inner, as on the command line — and gathers the results of the result
-protocol into a dict of 1-D arrays.  A point that fails (an unconverged result, or a ValueError /
-ArithmeticError / MemoryError raised by the solver) is a row with ``success`` False, NaN values
-and its message; it never stops the other points.
+protocol into a dict of 1-D arrays.  Bad input raises ValueError before any work (every point is
+checked by ``validate`` first).  A point that fails (an unconverged result, or an ArithmeticError,
+LinAlgError, MemoryError or RuntimeError raised by the solver) is a row with ``success`` False,
+NaN values and its message; it never stops the other points.
 """
 from __future__ import annotations
 
@@ -30,13 +31,17 @@ def _float(v):
     return math.nan if v is None else float(v)
 
 
-def sweep(solve, *, load=None, penetration=None, speed, errors=False, extra=(), **options):
+def sweep(solve, validate, *, load=None, penetration=None, speed, errors=False, extra=(),
+          **options):
     """Run ``solve(load=…|penetration=…, speed=…, **options)`` over the outer product.
 
     Parameters
     ----------
     solve : callable
         One road's keyword-only ``solve``.
+    validate : callable
+        Called as ``validate(load=…|penetration=…, speed=…, **options)`` for every point before
+        any is solved; raises ValueError on bad input.
     load, penetration : sequence of float
         Exactly one: the controls, outer loop.
     speed : sequence of float
@@ -46,7 +51,7 @@ def sweep(solve, *, load=None, penetration=None, speed, errors=False, extra=(), 
     extra : sequence of str
         Further result attributes to tabulate (plain numbers, e.g. ``"nodes"``).
     **options
-        Passed to every solve (ratio, hk, material, …); validated by the first call.
+        Passed to every solve (ratio, hk, material, …).
 
     Returns
     -------
@@ -73,12 +78,15 @@ def sweep(solve, *, load=None, penetration=None, speed, errors=False, extra=(), 
     if errors:
         for key in ERROR_KEYS:
             table[f"error_{key}"] = np.full(n, math.nan)
+    for c in outer:
+        for s in inner:
+            validate(**{control: float(c)}, speed=float(s), **options)
     i = 0
     for c in outer:
         for s in inner:
             try:
                 res = solve(**{control: float(c)}, speed=float(s), **options)
-            except (ValueError, ArithmeticError, MemoryError) as exc:
+            except (ArithmeticError, MemoryError, RuntimeError, np.linalg.LinAlgError) as exc:
                 table["message"][i] = f"{type(exc).__name__}: {exc}"
                 if control == "load":
                     table["load"][i] = c
