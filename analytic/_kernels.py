@@ -112,7 +112,12 @@ def gap_density(uL, uR, sA, Hc, Hs, kappa):
 
 @njit(cache=True)
 def closure_integrals(A, G, w, rho):
-    """I_W, I_K, I_WK = I_W − sin²(A/2) I_K, D_J, J_K of `_closure.py` (contact integrals × e^{−βA})."""
+    """I_W, I_K, I_WK = I_W − sin²(A/2) I_K, I_W0, D_J, J_K of `_closure.py`.
+
+    The contact integrals carry the weight e^{−β(θ+A)}; I_WK and I_W0 = ∫ P_W (e^{−β(θ+A)} −
+    e^{−βA}) are integrated against the weight minus its value at the centre, so that neither
+    suffers the cancellation of the difference written out.
+    """
     beta = rho / w
     sA = math.sin(0.5 * A)
     sA2 = sA * sA
@@ -122,6 +127,7 @@ def closure_integrals(A, G, w, rho):
     IW = 0.0
     IK = 0.0
     IWK = 0.0
+    IW0 = 0.0
     ebA = math.exp(-beta * A)
     for p in range(npan):
         for i in range(NG):
@@ -139,6 +145,7 @@ def closure_integrals(A, G, w, rho):
             IW += wt * even * 2.0 * c2 * r
             IK += wt * even * c2 / r
             IWK += wt * even0 * c2 * (2.0 * r2 - sA2) / r
+            IW0 += wt * even0 * 2.0 * c2 * r
     # gap, pair (θ, 2π − θ): cos(θ/2) is odd about π, weight e^{−u/w} − e^{−(2G−u)/w}
     h0 = 0.25 * min(w, 2.0 * A, 2.0 * G)
     npan = panel_count(G, h0)
@@ -153,7 +160,7 @@ def closure_integrals(A, G, w, rho):
             odd = -math.exp(-u / w) * math.expm1(-2.0 * (G - u) / w)
             DJ += wt * odd * 2.0 * c2 * R
             JK += wt * odd * c2 / R
-    return IW, IK, IWK, DJ, JK
+    return IW, IK, IWK, IW0, DJ, JK
 
 
 @njit(cache=True)

@@ -198,7 +198,7 @@ def _elastic_state(A, G):
     pen = sA2 * (1.0 - 2.0 * log_sin_half(A, G))
     nan = float("nan")
     return State(A, G, 0.0, 1.0, 0.0, 0.0, 1.0, 0.0, sA2, 1.0 - pen, pen, 0.0, 0.0,
-                 Integrals(nan, nan, nan, nan, nan))
+                 Integrals(nan, nan, nan, nan, nan, nan))
 
 
 def _closure_residuals(st):
