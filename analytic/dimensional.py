@@ -1,55 +1,22 @@
 """A thin SI front: dimensional inputs in, the same results in SI out.
 
-Nothing here solves anything: inputs are turned into the dimensionless groups of
-`conventions.md`, `solver.solve` does the work, and the outputs are
-scaled back.  Natural units: lengths 1/k = λ/(2π), stresses E0/(1 − ν²), times τ.
+Nothing here solves anything: `viscosine._si.scales` turns the SI inputs into the dimensionless
+groups (load p̃∞ = p∞(1 − ν²)/E0, speed V τ k, ratio E∞/E0, hk), `solver.solve` does the work
+and `viscosine._si.result` scales the outputs back.  Natural units: lengths 1/k = λ/(2π),
+stresses E0/(1 − ν²), times τ.
 """
 from __future__ import annotations
 
-import math
-from dataclasses import dataclass
-
-import numpy as np
+from viscosine import _si
 
 from . import solver
+from ._accepted import ACCEPTED
 from .full_contact import threshold_speed, transition_load
 
-
-def _positive(name, value, unit):
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} = {value!r}: must be a real number > 0 [{unit}]") from None
-    if not (math.isfinite(v) and v > 0.0):
-        raise ValueError(f"{name} = {value!r}: must be finite and > 0 [{unit}]")
-    return v
-
-
-@dataclass(frozen=True)
-class SIResult:
-    """One operating point in SI units (lengths m, stresses Pa, speeds m/s)."""
-
-    full_contact: bool
-    contact_halfwidth: float          # a [m] (λ/2 in full contact)
-    eccentricity: float | None        # e [m], toward the leading edge; None in full contact
-    pressure_eccentricity: float      # ê [m]
-    penetration: float                # Δ [m]
-    mean_separation: float            # s [m]
-    mean_pressure: float              # p∞ [Pa]
-    friction_stress: float            # τf [Pa], positive when it resists the motion
-    friction_coefficient: float       # μ
-    full_contact_pressure: float      # p_FC(V) [Pa]
-    threshold_speed: float            # V_th [m/s] for this p∞ (0: never full contact; inf: always)
-    wavelength: float                 # λ [m]
-    amplitude: float                  # h [m]
-    plane_strain_modulus: float       # E0/(1 − ν²) [Pa]
-    solution: solver.Solution         # the dimensionless solution behind it
-
-    def fields(self, x):
-        """σ [Pa], v [m] (into the body, from the deformed mean line) and gap [m] at x [m]."""
-        f = self.solution.fields(np.asarray(x, dtype=float) / self.wavelength)
-        return (f.pressure * self.plane_strain_modulus, f.displacement * self.amplitude,
-                f.gap * self.amplitude)
+# the SI input behind each dimensionless group, to name it when the group is out of range
+_SOURCE = {"load": ("mean_pressure", "p∞(1 − ν²)/E0"), "penetration": ("penetration", "Δ/h"),
+           "speed": ("speed", "V τ 2π/λ"), "ratio": ("Einf", "Einf/E0"),
+           "hk": ("amplitude", "amplitude·2π/wavelength")}
 
 
 def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
@@ -62,7 +29,7 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
         Relaxed and instantaneous Young's moduli [Pa], Einf > E0 (eq. 2.3: 1/E∞ = 1/E0 − 1/E1).
     tau : float
         Creep (retardation) time of eq. (2.3) [s].  For a relaxation time τ_R of the same solid,
-        τ = τ_R E∞/E0 (paper-notes 11).
+        τ = τ_R E∞/E0.
     nu : float
         Poisson's ratio, −1 < ν ≤ 0.5.
     wavelength, amplitude : float
@@ -76,58 +43,36 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
 
     Returns
     -------
-    SIResult
+    viscosine.SIResult
+        Lengths in m, stresses in Pa, speeds in m/s; ``fields(x)`` (x in m) gives a
+        `viscosine.Fields` with ``units="SI"``; ``solution`` is the dimensionless `Solution`.
+        ``success`` is False (with the message) when the solve failed.
+
+    Raises
+    ------
+    ValueError
+        An SI input that is invalid or whose dimensionless group lies outside
+        `analytic.ACCEPTED` (named by the SI parameter it comes from).
     """
-    E0 = _positive("E0", E0, "Pa")
-    Einf = _positive("Einf", Einf, "Pa")
-    if not Einf > E0:
-        raise ValueError(f"Einf = {Einf!r}: must be > E0 = {E0!r} [Pa]")
-    tau = _positive("tau", tau, "s")
-    try:
-        nu = float(nu)
-    except (TypeError, ValueError):
-        raise ValueError(f"nu = {nu!r}: must be a real number in (-1, 0.5]") from None
-    if not (math.isfinite(nu) and -1.0 < nu <= 0.5):
-        raise ValueError(f"nu = {nu!r}: must be in (-1, 0.5]")
-    lam = _positive("wavelength", wavelength, "m")
-    h = _positive("amplitude", amplitude, "m")
-    try:
-        V = float(speed)
-    except (TypeError, ValueError):
-        raise ValueError(f"speed = {speed!r}: must be a real number ≥ 0 [m/s]") from None
-    if not (math.isfinite(V) and V >= 0.0):
-        raise ValueError(f"speed = {speed!r}: must be finite and ≥ 0 [m/s]")
-    if (mean_pressure is None) == (penetration is None):
-        raise ValueError("give exactly one of mean_pressure [Pa] and penetration [m]")
-    k = 2.0 * math.pi / lam
-    estar = E0 / (1.0 - nu * nu)
-    ratio, hk, w = Einf / E0, h * k, V * tau * k
-    if mean_pressure is not None:
-        p = _positive("mean_pressure", mean_pressure, "Pa")
-        sol = solver.solve(load=p / estar, speed=w, ratio=ratio, hk=hk)
+    sc = _si.scales(E0=E0, Einf=Einf, tau=tau, nu=nu, wavelength=wavelength,
+                    amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
+                    penetration=penetration)
+    groups = {"speed": sc.speed, "ratio": sc.ratio, "hk": sc.hk}
+    if sc.load is not None:
+        groups["load"] = sc.load
     else:
-        d = _positive("penetration", penetration, "m")
-        if d > h:
-            raise ValueError(f"penetration = {penetration!r}: must be in (0, amplitude = {h!r}] [m]")
-        sol = solver.solve(penetration=d / h, speed=w, ratio=ratio, hk=hk)
-    if not sol.success:
-        raise RuntimeError(f"the semi-analytic solver did not converge: {sol.message}; "
-                           f"residuals {sol.residuals}")
-    vth = threshold_speed(sol.load, ratio, hk)
-    return SIResult(
-        full_contact=sol.full_contact,
-        contact_halfwidth=sol.ka / k,
-        eccentricity=None if sol.ke is None else sol.ke / k,
-        pressure_eccentricity=sol.ke_hat / k,
-        penetration=sol.penetration * h,
-        mean_separation=sol.separation * h,
-        mean_pressure=sol.load * estar,
-        friction_stress=sol.tau_f * estar,
-        friction_coefficient=sol.mu,
-        full_contact_pressure=transition_load(w, ratio, hk) * estar,
-        threshold_speed=vth / (tau * k),
-        wavelength=lam,
-        amplitude=h,
-        plane_strain_modulus=estar,
-        solution=sol,
-    )
+        groups["penetration"] = sc.penetration
+    given = {"load": mean_pressure, "penetration": penetration, "speed": speed, "ratio": Einf,
+             "hk": amplitude}
+    for name, value in groups.items():
+        try:
+            solver.validate(**{name: value})
+        except ValueError:
+            si_name, formula = _SOURCE[name]
+            raise ValueError(f"{si_name}={given[name]!r} is not allowed: it gives {formula} = "
+                             f"{value!r}, outside the accepted {ACCEPTED[name][2]}") from None
+    sol = solver.solve(**groups)
+    vth = threshold_speed(sol.load, sc.ratio, sc.hk) if sol.success else None
+    return _si.result(sol, sc, full_contact_load=transition_load(sc.speed, sc.ratio, sc.hk),
+                      threshold_speed=vth)
+

@@ -5,7 +5,8 @@ import numpy as np
 import pytest
 
 import analytic
-from analytic.dimensional import solve_si
+from analytic import solve_si
+from viscosine import Fields, SIResult
 from conftest import ROUNDOFF
 
 BASE = dict(E0=5e6, Einf=15e6, tau=2e-3, nu=0.45, wavelength=1e-3, amplitude=1.5e-4, speed=0.05)
@@ -23,7 +24,9 @@ def _scaled(L, S, T):
 def test_unit_invariance(control):
     ref = solve_si(**BASE, **({"mean_pressure": 1e6} if control == "load" else {"penetration": 1e-4}))
     x = np.linspace(-5e-4, 5e-4, 11)
-    sig0, v0, g0 = ref.fields(x)
+    f0 = ref.fields(x)
+    assert isinstance(ref, SIResult) and isinstance(f0, Fields) and f0.units == "SI"
+    sig0, v0 = f0.pressure, f0.displacement
     for L, S, T in [(1e3, 1e-6, 1.0), (1e-2, 7.0, 3e3), (2.0, 1.0, 1e-4)]:
         kw = _scaled(L, S, T)
         r = solve_si(**kw, **({"mean_pressure": 1e6 * S} if control == "load" else {"penetration": 1e-4 * L}))
@@ -37,7 +40,9 @@ def test_unit_invariance(control):
         assert r.friction_coefficient == pytest.approx(ref.friction_coefficient, rel=1e-11)
         assert r.threshold_speed == pytest.approx(ref.threshold_speed * L / T, rel=ROUNDOFF) or \
             (r.threshold_speed == ref.threshold_speed == 0.0)
-        sig, v, g = r.fields(x * L)
+        f = r.fields(x * L)
+        sig, v = f.pressure, f.displacement
+        assert np.allclose(f.x_over_lambda, f0.x_over_lambda, rtol=ROUNDOFF, atol=ROUNDOFF)
         assert np.allclose(sig, sig0 * S, rtol=1e-11, atol=1e-11 * np.abs(sig0).max() * S)
         assert np.allclose(v, v0 * L, rtol=1e-11, atol=1e-11 * np.abs(v0).max() * L)
 
