@@ -209,7 +209,7 @@ def gap_function_many(theta, A, G, w, Hc, Hs, kappa, out):
 
 @njit(cache=True)
 def paper_closures(A, G, w, rho, ke, Hc, Hs, kappa):
-    """Residuals of (2.14) and (2.15) as printed (corrected per paper-notes 3), relative to the
+    """Residuals of (2.14) and of (2.15) in its corrected form (DERIVATION.md §4), relative to the
     sum of the absolute values of their terms.
 
     (2.14): ∫ p exp(−(E∞/E0) x/(Vτ)) dx = 0 over the contact, with the full singular P;

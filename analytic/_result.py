@@ -197,9 +197,9 @@ class Solution:
         st = self._state
         theta = np.ascontiguousarray(theta, dtype=float)
         out = np.empty_like(theta)
-        if self.speed == 0.0:  # Westergaard: Σ = P_W
-            for j, t in enumerate(theta):
-                out[j] = K.contact_density(st.A + t, st.A - t, st.G, 1.0, 0.0, 0.0)
+        if self.speed == 0.0:  # Westergaard: Σ = P_W = 2 cos(θ/2) r, r² = sin((A+θ)/2) sin((A−θ)/2)
+            r2 = np.sin(0.5 * (st.A + theta)) * np.sin(0.5 * (st.A - theta))
+            out[:] = 2.0 * np.cos(0.5 * theta) * np.sqrt(np.maximum(r2, 0.0))
         else:
             K.contact_pressure_many(theta, st.A, st.G, st.rho / st.w, st.Hc, st.Hs, st.kappa, out)
         return out

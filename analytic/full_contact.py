@@ -30,8 +30,9 @@ def modulus(w, rho):
         mag = math.sqrt((1.0 + w * w) / (1.0 + (w / rho) ** 2))
     else:  # divide through by w² to stay finite at any speed
         mag = rho * math.sqrt((1.0 / (w * w) + 1.0) / ((rho / w) ** 2 + 1.0))
-    # atan(w) − atan(w/ρ) as a single atan, accurate at both ends
-    delta = math.atan2(w * (1.0 - 1.0 / rho), 1.0 + w * w / rho)
+    # atan(w) − atan(w/ρ) as a single atan, accurate at both ends; (ρ − 1)/ρ rather than
+    # 1 − 1/ρ, which keeps only ~1e-16/(ρ − 1) of its digits as ρ → 1
+    delta = math.atan2(w * ((rho - 1.0) / rho), 1.0 + w * w / rho)
     return mag, delta
 
 

@@ -55,7 +55,7 @@ def solve(z, ratio):
     # exponentially scaled Bessel functions: the e^{b} and e^{−z} factors cancel in the ratios
     i0, i1 = special.i0e(b), special.i1e(b)
     k0, k1 = special.k0e(z), special.k1e(z)
-    e_a = (1.0 - 1.0 / ratio) / z * i1 * k0 / (i1 * k0 + i0 * k1)
+    e_a = ((ratio - 1.0) / ratio) / z * i1 * k0 / (i1 * k0 + i0 * k1)
     lam = 1.0 + 2.0 * e_a * k1 / k0
     eh_a = e_a - 1.0 / (ratio * z) - (e_a - 1.0 / z) / lam
     return Hunter(z, ratio, e_a, eh_a, lam)

@@ -19,7 +19,7 @@ from scipy.optimize import brentq
 from viscosine import _table
 
 from . import _kernels as K
-from ._accepted import validate
+from ._accepted import ACCEPTED, validate
 from ._closure import Integrals, State, log_sin_half, state, westergaard_separation
 from ._result import Solution
 from .full_contact import friction_stress, modulus
@@ -205,6 +205,9 @@ def solve(*, load=None, penetration=None, speed, ratio=3.0, hk=1.0):
     if (load is None) == (penetration is None):
         raise ValueError(f"load={load!r}, penetration={penetration!r} is not allowed: give "
                          "exactly one of load and penetration")
+    for name, value in (("speed", speed), ("ratio", ratio), ("hk", hk)):
+        if value is None:
+            raise ValueError(f"{name}=None is not allowed: {ACCEPTED[name][2]}")
     v = validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk)
     control = "load" if load is not None else "penetration"
     inputs = {"control": control, "asked": v[control], "speed": v["speed"], "ratio": v["ratio"],

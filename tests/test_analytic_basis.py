@@ -99,6 +99,9 @@ def test_closure_integrals_against_quadpack(A_, w):
     assert I.IW == pytest.approx(IW, rel=QUADRATURE)
     assert I.IK == pytest.approx(IK, rel=QUADRATURE)
     assert I.IWK == pytest.approx(IW - sA2 * IK, rel=1e-8, abs=1e-12 * IW)
+    IW0 = quad(lambda t: 2 * c2(t) * rr(t) * (math.exp(-beta * t) - math.exp(-beta * A_)), 0, 2 * A_,
+               epsabs=0.0, epsrel=1e-13, limit=400)[0]
+    assert I.IW0 == pytest.approx(IW0, rel=1e-8, abs=1e-12 * IW)
     # gap, u = θ − A ∈ (0, 2G): R² = sin(u/2) sin(A + u/2)
     cg = lambda u: math.cos((u + A_) / 2)
     RR = lambda u: math.sqrt(math.sin(u / 2) * math.sin(A_ + u / 2))
@@ -117,6 +120,18 @@ def test_phi_series_and_direct_forms_agree():
     # small y: leading term (2/3) y³ − y⁵/5
     for v in [1e-3, 1e-6]:
         assert K.phi(v) == pytest.approx(2 / 3 * v ** 3 - v ** 5 / 5, rel=ROUNDOFF)
+
+
+@pytest.mark.parametrize("A_", [0.2, 1.0, 2.0, 3.0])
+@pytest.mark.parametrize("w", [1e-3, 0.3, 3.0, 1e3])
+@pytest.mark.parametrize("rho", [1.5, 3.0, 100.0])
+def test_friction_as_positive_terms_equals_the_closed_form(A_, w, rho):
+    """Where the closed form (hk)²/4 · Im[((1 + iw) sA²(1 + cA²) + 2κ cA² e^{ike})/(1 + iε)] has
+    no cancellation (contacts of order one), the sum-of-positive-terms form equals it."""
+    st = state(A_, math.pi - A_, w, rho)
+    sA2, cA2 = math.sin(A_ / 2) ** 2, math.cos(A_ / 2) ** 2
+    E = ((1 + 1j * w) * sA2 * (1 + cA2) + 2 * st.kappa * cA2 * np.exp(1j * st.ke)) / (1 + 1j * w / rho)
+    assert st.tau_hat == pytest.approx(0.25 * E.imag, rel=1e-12)
 
 
 def test_closure_reduction_solves_the_unreduced_equations():

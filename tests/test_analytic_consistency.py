@@ -1,4 +1,4 @@
-"""Consistency of every solved point (paper-notes, last paragraph) over the issue's grid and over
+"""Consistency of every solved point (the conditions any correct solution meets) over a grid and over
 the whole parameter range, and penetration control as the inverse of load control."""
 import math
 
