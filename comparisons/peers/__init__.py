@@ -1,0 +1,19 @@
+"""Third-party contact codes run on the project's problem, as independent witnesses.
+
+A peer is a code nobody on the project wrote, driven to the steady sliding of the rigid sinusoid
+over the standard linear solid and converted to the project's conventions (crest frame, σ(1 −
+ν²)/E0 positive in compression, v/h into the body from the deformed mean line, gap/h, μ = τf/p∞).
+It shares no numerics with either road; only `comparisons` compares them.
+
+* :mod:`comparisons.peers.tamaas` — Tamaas's transient viscoelastic solver
+  (``tamaas.MaxwellViscoelastic``) stepped to steady sliding (``pip install 'viscosine[peers]'``).
+
+The third-party libraries are imported lazily, inside the functions that need them, so this
+package imports without them.
+"""
+from __future__ import annotations
+
+#: peer name -> module, for the command line (``verify --peer NAME``)
+PEERS = {"tamaas": "comparisons.peers.tamaas"}
+
+__all__ = ["PEERS"]

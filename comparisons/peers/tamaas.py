@@ -1,0 +1,606 @@
+"""Tamaas as a third code: its transient viscoelastic contact solver stepped to steady sliding.
+
+Tamaas (Frérot, Anciaux, Rey, Pham-Ba & Molinari, https://gitlab.com/tamaas/tamaas) solves the
+normal contact of a rigid surface with a periodic half-space by a Polonsky–Keer conjugate-gradient
+method on an FFT influence operator.  Its ``MaxwellViscoelastic`` solver makes the half-space a
+generalised Maxwell solid stepped in time by backward Euler.  Nobody on this project wrote it,
+it never sees the steady-sliding Green's function of eq. (2.5) nor Hunter's transformation of the
+paper, and it reaches steady sliding the physical way: the material stays at rest in the lab
+frame, the sinusoid is moved every time step, and the transient is run out.
+
+What Tamaas computes (version 2.9, measured here and written where it bites)
+------------------------------------------------------------------------------
+* ``model_type.basic_1d`` is the plane-strain half-plane with a 1-D periodic surface: its
+  displacement obeys û(q) = 2 p̂(q)/(E*|q|) for q ≠ 0 with E* = E/(1 − ν²) (``model.E_star``);
+  system size 1 makes λ the unit of length.
+* The traction is the pressure, positive in compression; the displacement is positive into the
+  body; ``solve(p)`` imposes the mean pressure p, and the q = 0 mode of the displacement is the
+  rigid approach fixed by the contact, so the gap is u − surface (0 in contact) and ``surface``
+  is the indenter's protrusion into the body (crest = largest value).
+* Each ``MaxwellViscoelastic.solve`` is one backward-Euler step of length ``time_step`` (the
+  internal variables are updated after the solve: ``solve_should_update`` is true).  The branch
+  moduli are shear moduli in the units of ``model.mu`` = E/(2(1 + ν)), which plays the long-term
+  shear modulus G∞; the branch times are RELAXATION times.
+* Its state update relaxes to the right long-term state only when G∞ = ``model.mu`` = 1: with any
+  other value a constant imposed displacement relaxes to the wrong stress (measured: to 0.61 of
+  the relaxed value at G∞ = ½).  Here G∞ = 1 (E = 2, ν = 0), so Tamaas's pressures are in units of
+  G∞ and its relaxed plane-strain modulus is E0/(1 − ν²) = 2 G∞/(1 − ν) = 2.
+
+The standard linear solid in those units
+----------------------------------------
+The paper's material (eq. 2.3) has creep compliance J(t) = 1/E0 − (1/E1) e^{−t/τ} with τ the
+CREEP (retardation) time; its relaxation modulus is E(t) = E0 + (E∞ − E0) e^{−t/τ_R} with
+relaxation time τ_R = τ E0/E∞.  So Tamaas gets one branch with modulus (E∞/E0 − 1) G∞ and time
+τ/ratio (τ = 1).  Passing τ itself would shift every speed by the factor E∞/E0.  ν only scales
+E* and drops out of every dimensionless output (ν = 0 here).
+
+Units (the project's): lengths in λ (positions x/λ) or over h, pressures in E0/(1 − ν²), times in
+τ; inputs load p̃∞ = p∞(1 − ν²)/E0, speed V/V0 = Vτk, ratio E∞/E0, hk.  In Tamaas's units:
+λ = 1, h = hk/(2π), V = speed/(2π) per τ, a period takes T = 2π/speed, σ̃ = p_Tamaas/2.
+
+Sliding and the steady state
+----------------------------
+The indenter advances toward +x by a whole number of grid cells per step, or by one cell in a
+whole number of steps (``dt`` is snapped to the nearest such value), so that after every period
+its crest is back on grid node 0 and the crest-frame fields are the lab fields rolled by N/2.
+At every period end the fields and scalars are compared with the previous period's; the run is
+steady when that change, and the tail of the geometric series it decays by, are below
+``steady_rtol``.  With one cell per step (the default dt) the discrete steady state is an exact
+travelling wave.
+
+Output conventions: the crest frame (crest at x = 0, material streaming toward −x), σ(1 − ν²)/E0
+positive in compression, v/h positive into the body from the mean line of the deformed surface,
+gap/h, τ̃f = −(1/λ)∫σ̃ ∂v/∂x dx (positive when it resists: the paper's (1/λ)∫σ ∂v/∂x dx with the
+sign of a resisting force made positive) and μ = τ̃f/p̃∞.
+
+References
+----------
+Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014: eq. (2.3) (the
+material), eq. (3.1) and Appendix A (Westergaard's limits), the definitions of a, e, ê, Δ, τf.
+"""
+from __future__ import annotations
+
+import math
+import numbers
+import time
+from dataclasses import asdict, dataclass, field
+
+import numpy as np
+
+import viscosine
+from viscosine import Fields
+
+#: the Tamaas versions this adapter was verified on (its conventions are measured, not assumed)
+TAMAAS_REQUIREMENT = "tamaas>=2.9,<2.10"
+_INSTALL = "pip install 'viscosine[peers]'"
+
+# Tamaas's model: G∞ = model.mu = 1 (its update is right only then), ν = 0, E = 2(1 + ν) G∞
+_NU = 0.0
+_E_TAMAAS = 2.0 * (1.0 + _NU)
+_ESTAR0 = _E_TAMAAS / (1.0 - _NU * _NU)  # relaxed plane-strain modulus in Tamaas units: 2
+
+SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
+               "mu")
+_TWO_PI = 2.0 * math.pi
+
+#: name -> (low, high, what is allowed and why); bounds inclusive
+ACCEPTED = {
+    "load": (1e-8, 1e8,
+             "a mean pressure p̃∞ = p∞(1 − ν²)/E0 in [1e-08, 1e+08] (below, the contact is far "
+             "narrower than any affordable grid; above, full contact at any speed)"),
+    "speed": (1e-9, 1e9,
+              "V/V0 = Vτk in [1e-09, 1e+09] (a transient code needs motion; beyond, the run is "
+              "the relaxed or glassy elastic solution to double precision, and the time step "
+              "T/N spans 1e-10 to 1e+10 τ)"),
+    "ratio": (1.0, 1e4,
+              "E∞/E0 > 1 and ≤ 1e+04 (1 is an elastic material: no Maxwell branch)"),
+    "hk": (1e-6, 1e6, "hk in [1e-06, 1e+06] (Tamaas's problem is linear: hk scales pressures)"),
+    "nodes": (16, 2 ** 20,
+              "an even number of grid nodes N per period in [16, 1048576] (each step is one "
+              "Tamaas solve on N nodes, a period N steps at the default dt)"),
+    "dt": (0.0, math.inf,
+           "a finite time step > 0 in units of the creep time τ (snapped so the indenter advances "
+           "a whole number of cells per step, or a cell in a whole number of steps), or None"),
+    "tolerance": (1e-15, 1e-4, "Tamaas's Polonsky–Keer tolerance in [1e-15, 1e-4]"),
+    "steady_rtol": (1e-12, 1e-1, "a steadiness tolerance (change per period) in [1e-12, 0.1]"),
+    "max_periods": (2, 100000, "a whole number of periods in [2, 100000]"),
+}
+
+
+def _bad(name, value, allowed):
+    return ValueError(f"{name}={value!r} is not allowed: {allowed}")
+
+
+def _real(name, value):
+    lo, hi, text = ACCEPTED[name]
+    if not isinstance(value, numbers.Real) or isinstance(value, bool):
+        raise _bad(name, value, text)
+    v = float(value)
+    if not math.isfinite(v):
+        raise _bad(name, value, text)
+    if name in ("ratio", "dt"):
+        ok = lo < v <= hi
+    else:
+        ok = lo <= v <= hi
+    if not ok:
+        raise _bad(name, value, text)
+    return v
+
+
+def _integer(name, value, even=False):
+    lo, hi, text = ACCEPTED[name]
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise _bad(name, value, text)
+    v = int(value)
+    if not lo <= v <= hi or (even and v % 2):
+        raise _bad(name, value, text)
+    return v
+
+
+def validate(*, load=None, speed=None, ratio=None, hk=None, nodes=None, dt=None, tolerance=None,
+             steady_rtol=None, max_periods=None):
+    """Check the inputs of `solve` (those given); return them as plain numbers.
+
+    Raises
+    ------
+    ValueError
+        ``"name=value is not allowed: what is allowed"`` for the first bad input.
+    """
+    out = {}
+    for name, value in (("load", load), ("speed", speed), ("ratio", ratio), ("hk", hk),
+                        ("dt", dt), ("tolerance", tolerance), ("steady_rtol", steady_rtol)):
+        if value is not None:
+            out[name] = _real(name, value)
+    if nodes is not None:
+        out["nodes"] = _integer("nodes", nodes, even=True)
+    if max_periods is not None:
+        out["max_periods"] = _integer("max_periods", max_periods)
+    return out
+
+
+def _import_tamaas():
+    """The tamaas module, or an ImportError that says how to install it."""
+    try:
+        import tamaas
+    except ImportError as exc:
+        raise ImportError(f"the Tamaas peer needs the tamaas package ({TAMAAS_REQUIREMENT}); "
+                          f"install it with: {_INSTALL}") from exc
+    return tamaas
+
+
+def _plain(v):
+    """A JSON-ready copy: finite floats or None, lists for tuples, Python scalars."""
+    if isinstance(v, dict):
+        return {str(k): _plain(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        v = float(v)
+        return v if math.isfinite(v) else None
+    return v
+
+
+# ----------------------------------------------------------------------------- results
+@dataclass(frozen=True)
+class Patch:
+    """One contact patch (positions x/λ in the crest frame).
+
+    Attributes
+    ----------
+    trailing_edge, leading_edge : float
+        The −x and +x edges, estimated between grid nodes (leading > trailing; may straddle ±½).
+    width : float
+        leading − trailing (2a/λ).
+    load : float
+        The part of p̃∞ the patch carries.
+    centroid : float
+        x/λ of the pressure centroid over the patch's nodes (full contact: the phase of the
+        pressure's first harmonic over 2π).
+    summit : float
+        x/λ of the highest profile point in the patch (0, the crest, when it is inside).
+    ka, ke, ke_hat : float
+        π·width, 2π(centre − summit) (None in full contact), 2π(centroid − summit).
+    """
+
+    trailing_edge: float
+    leading_edge: float
+    width: float
+    load: float
+    centroid: float
+    summit: float
+    ka: float
+    ke: float | None
+    ke_hat: float
+
+
+@dataclass(frozen=True)
+class TamaasResult:
+    """One operating point run by Tamaas to steady sliding (the project's result protocol).
+
+    Attributes
+    ----------
+    success, status, message, warnings
+        Whether this is an answer (steady, every step of the last period converged), 0 or 1,
+        what the run says, caveats.
+    nit
+        Time steps taken.
+    load, speed, ratio, hk, nodes, dt
+        Achieved p̃∞ (mean of σ̃ over the grid), V/V0, E∞/E0, hk, N and the time step used
+        (units of τ, after snapping).
+    full_contact, contact_fraction, ka, ke, ke_hat, penetration, separation, tau_f, mu
+        The scalars of the conventions at the last period end (ka, ke, kê None with several
+        patches; ke None in full contact); separation s/h = 1 − Δ/h.
+    max_pressure, x_max_pressure
+        Largest nodal σ̃ and its x/λ.
+    n_patches, patches
+        Contact patches (`Patch`).
+    diagnostics
+        steps, periods, dt_over_tau, dt_over_period, cells_per_step, steps_per_cell,
+        steady_residual (largest relative change over the last period), steady_tail (its
+        geometric tail, the estimated distance to the steady state), steady_history,
+        solver_error (worst Tamaas error over the last period), tolerance,
+        complementarity (largest |gap|/h where σ > 0, before it is set to 0),
+        load_error (|mean σ̃ − p̃∞|/p̃∞), wall_time (s), tamaas_version.
+    error_estimate
+        None (one run has no error estimate; see `dt_study`).
+    """
+
+    success: bool
+    status: int
+    message: str
+    warnings: tuple
+    nit: int
+    load: float
+    speed: float
+    ratio: float
+    hk: float
+    nodes: int
+    dt: float
+    full_contact: bool
+    contact_fraction: float
+    ka: float | None
+    ke: float | None
+    ke_hat: float | None
+    penetration: float
+    separation: float
+    tau_f: float
+    mu: float
+    max_pressure: float
+    x_max_pressure: float
+    n_patches: int
+    patches: tuple
+    diagnostics: dict
+    load_asked: float = math.nan
+    error_estimate = None
+    _fields: Fields | None = field(default=None, repr=False, compare=False)
+
+    def scalars(self):
+        """The eight scalars of the conventions (plain Python types, None where null)."""
+        return {k: _plain(getattr(self, k)) for k in SCALAR_KEYS}
+
+    def as_dict(self):
+        """The JSON record (serialisable with ``allow_nan=False``)."""
+        rec = {"solver": "tamaas", "version": viscosine.__version__, "control": "load",
+               "load_asked": self.load_asked, "speed": self.speed, "ratio": self.ratio,
+               "hk": self.hk, "nodes": self.nodes, "dt": self.dt, "load": self.load}
+        rec.update(self.scalars())
+        rec.update({"separation": self.separation, "success": self.success,
+                    "message": self.message, "warnings": list(self.warnings),
+                    "max_pressure": self.max_pressure, "x_max_pressure": self.x_max_pressure,
+                    "n_patches": self.n_patches, "patches": [asdict(p) for p in self.patches],
+                    "diagnostics": self.diagnostics, "error_estimate": None})
+        return _plain(rec)
+
+    def fields(self, x_over_lambda=None):
+        """Pressure, displacement and gap at the last period end.
+
+        Parameters
+        ----------
+        x_over_lambda : array_like, optional
+            Positions x/λ in the crest frame; default Tamaas's grid j/N − ½, j = 0 … N − 1
+            (the crest on node N/2).  Elsewhere the nodal values are interpolated linearly and
+            periodically.
+
+        Returns
+        -------
+        viscosine.Fields
+            σ(1 − ν²)/E0, v/h and gap/h (conventions units).
+        """
+        f = self._fields
+        if f is None:
+            raise RuntimeError(f"no fields: the run failed ({self.message})")
+        if x_over_lambda is None:
+            return f
+        X = np.atleast_1d(np.asarray(x_over_lambda, dtype=float))
+        if X.ndim != 1 or not np.all(np.isfinite(X)):
+            raise ValueError(f"x_over_lambda={x_over_lambda!r} is not allowed: a 1-D array of "
+                             "finite positions x/λ")
+        xp = f.x_over_lambda
+        return Fields(X, *(np.interp(X, xp, a, period=1.0)
+                           for a in (f.pressure, f.displacement, f.gap)))
+
+
+# ----------------------------------------------------------------------------- measuring
+def _runs(mask):
+    """Maximal runs of True in a periodic boolean array: list of (first, length)."""
+    n = mask.size
+    if mask.all():
+        return [(0, n)]
+    if not mask.any():
+        return []
+    start = int(np.argmin(mask))  # a False node: runs never wrap past it
+    m = np.roll(mask, -start)
+    d = np.diff(np.concatenate(([0], m.astype(np.int8), [0])))
+    firsts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
+    return [((int(f) + start) % n, int(e - f)) for f, e in zip(firsts, ends)]
+
+
+def _edge_cells(g_near, g_far, s_in, s_next):
+    """Where a contact edge lies between the last gap node and the first contact node.
+
+    Returns the distance from the last gap node toward the contact, in cells (0 to 1).  Just
+    outside an edge the gap grows like distance^(3/2), so gap^(2/3) is linear: it is
+    extrapolated to zero from the two nearest gap nodes (measured on Westergaard's solution:
+    edges within 0.15 cell at N = 256, 0.06 cell at N ≥ 512, against 0.3–0.7 cell for the
+    nearest node).  With a single gap node, σ² (linear near the edge, σ ~ √distance) is
+    extrapolated from the first two contact nodes instead.
+    """
+    if g_far is not None and g_far > g_near > 0.0:
+        a, b = g_near ** (2.0 / 3.0), g_far ** (2.0 / 3.0)
+        return min(a / (b - a), 1.0)
+    if s_next is not None and s_next > s_in > 0.0:
+        a, b = s_in * s_in, s_next * s_next
+        return max(1.0 - a / (b - a), 0.0)
+    return 0.5
+
+
+def _measure(sigma, u, gap, h, load):
+    """The scalars of one snapshot in the crest frame (arrays on x_j = j/N − ½).
+
+    Returns a dict with the eight scalars, separation, max pressure and the patches.
+    """
+    n = sigma.size
+    dx = 1.0 / n
+    x = np.arange(n) * dx - 0.5
+    # τ̃f = −(1/λ)∫σ̃ ∂u/∂x dx with a spectral derivative (u and x in λ): resisting > 0
+    q = _TWO_PI * np.fft.rfftfreq(n, dx)
+    uh = np.fft.rfft(u)
+    uh[-1] = 0.0  # the Nyquist mode has no derivative on the grid
+    slope = np.fft.irfft(1j * q * uh, n)
+    tau_f = -float(np.mean(sigma * slope))
+    tau_abs = float(np.mean(np.abs(sigma * slope)))
+    s = float(np.mean(u))  # the mean gap: mean(u) − mean(profile), and the profile's mean is 0
+    contact = sigma > 0.0
+    jmax = int(np.argmax(sigma))
+    out = {"tau_f": tau_f, "tau_abs": tau_abs, "mu": tau_f / load, "separation": s / h,
+           "penetration": 1.0 - s / h, "max_pressure": float(sigma[jmax]),
+           "x_max_pressure": float(x[jmax]), "load": float(np.mean(sigma))}
+    runs = _runs(contact)
+    if len(runs) == 1 and runs[0][1] == n:  # full contact: σ̃ is p̃∞ + A cos(kx − δ) exactly
+        delta = -float(np.angle(np.sum(sigma * np.exp(-1j * _TWO_PI * x))))
+        patch = Patch(-0.5, 0.5, 1.0, out["load"], delta / _TWO_PI, 0.0, math.pi, None, delta)
+        out.update(full_contact=True, contact_fraction=1.0, ka=math.pi, ke=None, ke_hat=delta,
+                   patches=(patch,))
+        return out
+    def outside(i):  # the gap at node i, or None when i is in contact
+        i %= n
+        return None if contact[i] else float(gap[i])
+
+    patches = []
+    for first, length in runs:
+        idx = (first + np.arange(length)) % n
+        xs = x[first] + dx * np.arange(length)  # continuous across ±½
+        sg = sigma[idx]
+        nxt, prv = (float(sg[1]), float(sg[-2])) if length >= 2 else (None, None)
+        trailing = xs[0] - dx * (1.0 - _edge_cells(outside(first - 1), outside(first - 2),
+                                                   float(sg[0]), nxt))
+        leading = xs[-1] + dx * (1.0 - _edge_cells(outside(first + length),
+                                                   outside(first + length + 1), float(sg[-1]), prv))
+        width = leading - trailing
+        centroid = float(np.dot(xs, sg) / np.sum(sg))
+        centre = 0.5 * (trailing + leading)
+        wrap = math.floor(centre + 0.5)  # the crest nearest the patch; positions around it
+        summit = float(min(max(wrap, trailing), leading))  # highest profile point in the patch
+        patches.append(Patch(trailing - wrap, leading - wrap, width, float(np.sum(sg)) / n,
+                             centroid - wrap, summit - wrap, math.pi * width,
+                             _TWO_PI * (centre - summit), _TWO_PI * (centroid - summit)))
+    width = sum(p.width for p in patches)
+    one = patches[0] if len(patches) == 1 else None
+    out.update(full_contact=False, contact_fraction=width,
+               ka=None if one is None else one.ka, ke=None if one is None else one.ke,
+               ke_hat=None if one is None else one.ke_hat, patches=tuple(patches))
+    return out
+
+
+def _stepping(dt, speed, nodes):
+    """(cells per step, steps per cell, snapped dt) nearest the requested dt (geometrically).
+
+    The indenter must come back onto grid node 0 after each period: so a step is a whole number
+    of cells that divides N, or a cell is a whole number of steps.
+    """
+    t_cell = _TWO_PI / (speed * nodes)  # time to cross one cell, units of τ
+    if dt is None:
+        return 1, 1, t_cell
+    r = dt / t_cell
+    if r >= 1.0:
+        divisors = [d for d in range(1, nodes + 1) if nodes % d == 0]
+        m = min(divisors, key=lambda d: abs(math.log(d / r)))
+        return m, 1, m * t_cell
+    lo = max(1, math.floor(1.0 / r))
+    s = min((lo, lo + 1), key=lambda k: abs(math.log(k * r)))
+    return 1, s, t_cell / s
+
+
+# ----------------------------------------------------------------------------- solve
+def solve(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dt=None, tolerance=1e-10,
+          steady_rtol=1e-6, max_periods=400):
+    """Run Tamaas's viscoelastic solver to steady sliding of the sinusoid and convert its output.
+
+    Parameters
+    ----------
+    load : float
+        p̃∞ = p∞(1 − ν²)/E0 (load control; Tamaas's ``solve`` imposes the mean pressure).
+    speed : float
+        V/V0 = Vτk, τ the creep time of eq. (2.3).
+    ratio : float
+        E∞/E0 > 1 (one Maxwell branch of modulus (ratio − 1) G∞, relaxation time τ/ratio).
+    hk : float
+        Amplitude times wavenumber.
+    nodes : int
+        Grid nodes N per period (even).
+    dt : float, optional
+        Time step in units of τ.  Default: T/N, the time the indenter takes to cross one cell
+        (T = 2π/speed the period): the discrete steady state is then an exact travelling wave,
+        and the backward-Euler error in μ is about 3/N relative at any speed we measured
+        (0.1 ≤ V/V0 ≤ 3 at p̃∞ = 0.15: it depends on the distance travelled per step).  Other
+        values are snapped to a whole number of cells per step dividing N, or a whole number of
+        steps per cell (geometrically nearest; ``diagnostics['dt_requested']``).
+    tolerance : float
+        Tamaas's Polonsky–Keer tolerance per step (1e-10: μ then moves by < 1e-10 relative).
+    steady_rtol : float
+        Steady when the relative change of the fields and scalars over one period, and the
+        geometric tail of those changes, are below this.
+    max_periods : int
+        Periods after which an unsteady run is reported as a failure.
+
+    Returns
+    -------
+    TamaasResult
+        The result protocol; ``fields()`` on Tamaas's grid.
+
+    Raises
+    ------
+    ValueError
+        Bad input: ``"name=value is not allowed: what is allowed"``.
+    ImportError
+        tamaas is not installed (the message says ``pip install 'viscosine[peers]'``).
+
+    References
+    ----------
+    Eq. (2.3) (the standard linear solid; τ is the creep time), the definitions of a, e, ê, Δ
+    and τf of the paper.
+    """
+    v = validate(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, dt=dt,
+                 tolerance=tolerance, steady_rtol=steady_rtol, max_periods=max_periods)
+    for name in ("load", "speed", "ratio", "hk", "nodes", "tolerance", "steady_rtol", "max_periods"):
+        if name not in v:
+            raise _bad(name, None, ACCEPTED[name][2])
+    load, speed, ratio, hk, n = v["load"], v["speed"], v["ratio"], v["hk"], v["nodes"]
+    tolerance, steady_rtol, max_periods = v["tolerance"], v["steady_rtol"], v["max_periods"]
+    tm = _import_tamaas()
+    warnings = []
+    if not str(tm.__version__).startswith("2.9."):
+        warnings.append(f"tamaas {tm.__version__} is not the version this adapter was verified "
+                        f"on ({TAMAAS_REQUIREMENT})")
+    m_cells, s_steps, dt_used = _stepping(v.get("dt"), speed, n)
+    if v.get("dt") is not None and abs(dt_used / v["dt"] - 1.0) > 1e-9:
+        warnings.append(f"dt snapped from {v['dt']!r} to {dt_used!r} (a whole number of cells "
+                        "per step, or of steps per cell)")
+    steps_per_period = n * s_steps // m_cells
+    h = hk / _TWO_PI
+    period = _TWO_PI / speed
+
+    # the profile at each sub-cell offset, rolled by whole cells: bitwise periodic in time
+    j = np.arange(n)
+    base = [h * np.cos(_TWO_PI * (j / n - k / (n * s_steps))) for k in range(s_steps)]
+    surface = np.array(base[0], dtype=np.float64, order="C")  # Tamaas keeps a view of it
+
+    level = tm.get_log_level()
+    tm.set_log_level(tm.LogLevel.error)  # Tamaas logs every solve at the info level
+    t0 = time.perf_counter()
+    try:
+        model = tm.ModelFactory.createModel(tm.model_type.basic_1d, [1.0], [n])
+        model.E, model.nu = _E_TAMAAS, _NU  # model.mu = G∞ = 1
+        solver = tm.MaxwellViscoelastic(model, surface, tolerance, dt_used, [ratio - 1.0],
+                                        [1.0 / ratio])  # relaxation time τ_R = τ E0/E∞
+        target = load * _ESTAR0
+        history, prev, snap = [], None, None
+        steps, steady, tail, worst = 0, False, math.inf, 0.0
+        for period_no in range(1, max_periods + 1):
+            worst = 0.0
+            for _ in range(steps_per_period):
+                steps += 1
+                # crest position in 1/s of a cell: m cells per step (s = 1) or 1/s (m = 1)
+                cells, k = divmod(steps * m_cells, s_steps)
+                surface[:] = np.roll(base[k], cells % n)
+                err = solver.solve(target)
+                worst = max(worst, float(err))
+            # period end: crest on node 0; the crest frame is the lab frame rolled by N/2
+            sigma = np.roll(np.array(model.traction, dtype=float), n // 2) / _ESTAR0
+            u = np.roll(np.array(model.displacement, dtype=float), n // 2)
+            gap = np.roll(np.array(model["gap"], dtype=float), n // 2)
+            snap = (sigma, u, gap, _measure(sigma, u, gap, h, load))
+            if prev is not None:
+                resid = _change(prev, snap, h)
+                history.append(resid)
+                if len(history) >= 2 and history[-2] > 0.0:
+                    ratio_q = history[-1] / history[-2]
+                    tail = resid * ratio_q / (1.0 - ratio_q) if ratio_q < 1.0 else math.inf
+                else:
+                    tail = math.inf
+                if resid <= 10.0 * tolerance or (resid <= steady_rtol and tail <= steady_rtol):
+                    steady = True
+                    break
+            prev = snap
+    finally:
+        tm.set_log_level(level)
+    wall = time.perf_counter() - t0
+    sigma, u, gap, meas = snap
+    contact = sigma > 0.0
+    complementarity = float(np.max(np.abs(gap[contact]))) / h if contact.any() else 0.0
+    gap_out = np.where(contact, 0.0, gap) / h  # Tamaas leaves its residual (≤ tolerance) there
+    x = np.arange(n) / n - 0.5
+    flds = Fields(x, sigma, (u - np.mean(u)) / h, gap_out)
+    resid = history[-1] if history else math.inf
+    converged = worst <= tolerance * (1.0 + 1e-6)
+    if len(meas["patches"]) and not meas["full_contact"] and min(
+            p.width for p in meas["patches"]) * n < 8:
+        warnings.append(f"a contact patch spans fewer than 8 of the {n} nodes: its edges and "
+                        "friction are poorly resolved")
+    if steady and converged:
+        success, status = True, 0
+        message = (f"steady after {period_no} periods ({steps} steps): change over the last "
+                   f"period {resid:.1e}")
+    else:
+        success, status = False, 1
+        why = [] if steady else [f"not steady after {period_no} periods (change over the last "
+                                 f"period {resid:.1e}, estimated distance to steady {tail:.1e} > "
+                                 f"steady_rtol = {steady_rtol:g}); raise max_periods"]
+        if not converged:
+            why.append(f"Tamaas's solver stopped at error {worst:.1e} > tolerance {tolerance:g}")
+        message = "; ".join(why)
+    diagnostics = {
+        "steps": steps, "periods": period_no, "steps_per_period": steps_per_period,
+        "dt_over_tau": dt_used, "dt_over_period": dt_used / period,
+        "dt_over_relaxation_time": dt_used * ratio, "dt_requested": v.get("dt"),
+        "cells_per_step": m_cells, "steps_per_cell": s_steps,
+        "steady_residual": resid, "steady_tail": tail if math.isfinite(tail) else None,
+        "steady_history": list(history), "solver_error": worst, "tolerance": tolerance,
+        "complementarity": complementarity,
+        "load_error": abs(meas["load"] / load - 1.0), "wall_time": wall,
+        "tamaas_version": str(tm.__version__)}
+    return TamaasResult(
+        success=success, status=status, message=message, warnings=tuple(warnings), nit=steps,
+        load=meas["load"], speed=speed, ratio=ratio, hk=hk, nodes=n, dt=dt_used,
+        full_contact=meas["full_contact"], contact_fraction=meas["contact_fraction"],
+        ka=meas["ka"], ke=meas["ke"], ke_hat=meas["ke_hat"], penetration=meas["penetration"],
+        separation=meas["separation"], tau_f=meas["tau_f"], mu=meas["mu"],
+        max_pressure=meas["max_pressure"], x_max_pressure=meas["x_max_pressure"],
+        n_patches=len(meas["patches"]), patches=meas["patches"], diagnostics=diagnostics,
+        load_asked=load, _fields=flds)
+
+
+def _change(prev, snap, h):
+    """Largest relative change between two period-end snapshots (fields and scalars)."""
+    s0, u0, _, m0 = prev
+    s1, u1, _, m1 = snap
+    v0, v1 = u0 - np.mean(u0), u1 - np.mean(u1)
+    scale_v = max(float(np.max(np.abs(v1))), 1e-300)
+    return max(float(np.max(np.abs(s1 - s0)) / max(np.max(np.abs(s1)), 1e-300)),
+               float(np.max(np.abs(v1 - v0))) / scale_v,
+               abs(m1["tau_f"] - m0["tau_f"]) / max(m1["tau_abs"], 1e-300),
+               abs(m1["separation"] - m0["separation"]) * h / scale_v)
