@@ -400,6 +400,7 @@ def _measure(sigma, u, gap, h, load):
                                                    float(sg[0]), nxt))
         leading = xs[-1] + dx * (1.0 - _edge_cells(outside(first + length),
                                                    outside(first + length + 1), float(sg[-1]), prv))
+        trailing, leading = float(trailing), float(leading)
         width = leading - trailing
         centroid = float(np.dot(xs, sg) / np.sum(sg))
         centre = 0.5 * (trailing + leading)
@@ -604,3 +605,277 @@ def _change(prev, snap, h):
                float(np.max(np.abs(v1 - v0))) / scale_v,
                abs(m1["tau_f"] - m0["tau_f"]) / max(m1["tau_abs"], 1e-300),
                abs(m1["separation"] - m0["separation"]) * h / scale_v)
+
+
+# ----------------------------------------------------------------------------- dt study
+#: the quantities a dt study extrapolates
+STUDY_KEYS = ("mu", "tau_f", "penetration", "ka", "ke", "ke_hat", "contact_fraction")
+
+
+def _order(dts, values):
+    """Observed order p from three (dt, value) pairs, dt decreasing: solves
+    (q1 − q0)/(q2 − q1) = (dt0^p − dt1^p)/(dt1^p − dt2^p); None when the differences do not
+    shrink monotonically (no order to observe)."""
+    (d0, d1, d2), (q0, q1, q2) = dts, values
+    a, b = q1 - q0, q2 - q1
+    if b == 0.0 or a / b <= 1.0:
+        return None
+    target = math.log(a / b)
+
+    def f(p):
+        return math.log((d0 ** p - d1 ** p) / (d1 ** p - d2 ** p)) - target
+
+    lo, hi = 0.05, 10.0
+    if f(lo) > 0.0 or f(hi) < 0.0:
+        return None
+    for _ in range(200):  # bisection: f increases with p
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if f(mid) < 0.0 else (lo, mid)
+    return 0.5 * (lo + hi)
+
+
+def _richardson(dt_c, q_c, dt_f, q_f, order=1.0):
+    """q at dt → 0 from two steps, assuming q = q* + C dt^order."""
+    return q_f + (q_f - q_c) / ((dt_c / dt_f) ** order - 1.0)
+
+
+def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=False,
+             **options):
+    """Run `solve` at several time steps and extrapolate to dt → 0 (backward Euler: first order).
+
+    Parameters
+    ----------
+    load, speed, ratio, hk, nodes
+        As in `solve`.
+    dts : sequence of float, optional
+        Time steps in units of τ (snapped as in `solve`), sorted here from coarse to fine.
+        Default: 4, 2 and 1 grid-cell crossings (the finest is `solve`'s default).
+    mesh_check : bool
+        Also run the two finest steps at N/2 and report how much the extrapolated values move.
+    **options
+        tolerance, steady_rtol, max_periods (passed to `solve`).
+
+    Returns
+    -------
+    dict
+        Plain data: ``inputs``; ``rows`` (one per dt: dt/τ, dt/T, cells per step, steps per
+        cell, the scalars of `STUDY_KEYS`, steps, periods, wall time, success, message);
+        ``order`` (observed order of each quantity from the three finest steps, None if fewer
+        than three or not monotone); ``richardson`` (first-order extrapolation from the two
+        finest steps); ``error`` (its estimated error: the change of the extrapolation from
+        the coarser pair, divided by dt_coarsest/dt_finest − 1, i.e. the size of the next
+        term; None with two steps); ``mesh`` (None, or the extrapolation at N/2 and its
+        difference); ``success`` and ``wall_time``.
+
+    References
+    ----------
+    The definitions of a, e, ê, Δ and τf of the paper; the extrapolation is Richardson's.
+    """
+    v = validate(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes)
+    t_cell = _TWO_PI / (v["speed"] * v["nodes"])
+    if dts is None:
+        dts = (4.0 * t_cell, 2.0 * t_cell, t_cell)
+    try:
+        dts = sorted((float(d) for d in dts), reverse=True)
+    except (TypeError, ValueError):
+        raise _bad("dts", dts, "a sequence of at least two time steps > 0 (units of τ)") from None
+    if len(dts) < 2:
+        raise _bad("dts", dts, "a sequence of at least two time steps > 0 (units of τ)")
+    for d in dts:
+        validate(dt=d)
+    t0 = time.perf_counter()
+    rows = _study_rows(dts, load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, **options)
+    used = [r["dt"] for r in rows]
+    if len(set(used)) != len(used):
+        raise _bad("dts", dts, "time steps that stay distinct after snapping to the grid (see "
+                   "solve)")
+    out = {"inputs": {"load": load, "speed": speed, "ratio": ratio, "hk": hk, "nodes": nodes,
+                      "dts": list(dts), **options},
+           "rows": rows, "success": all(r["success"] for r in rows)}
+    out.update(_extrapolate(rows))
+    out["mesh"] = None
+    if mesh_check and nodes // 2 >= ACCEPTED["nodes"][0] and (nodes // 2) % 2 == 0:
+        half = _study_rows(used[-2:], load=load, speed=speed, ratio=ratio, hk=hk,
+                           nodes=nodes // 2, **options)
+        ext = _extrapolate(half)["richardson"]
+        out["mesh"] = {"nodes": nodes // 2, "rows": half, "richardson": ext,
+                       "difference": {k: (None if ext[k] is None or out["richardson"][k] is None
+                                          else out["richardson"][k] - ext[k])
+                                      for k in STUDY_KEYS}}
+        out["success"] = out["success"] and all(r["success"] for r in half)
+    out["wall_time"] = time.perf_counter() - t0
+    return out
+
+
+def _study_rows(dts, **kw):
+    rows = []
+    for d in dts:
+        r = solve(dt=d, **kw)
+        dg = r.diagnostics
+        row = {"dt": r.dt, "dt_over_period": dg["dt_over_period"],
+               "cells_per_step": dg["cells_per_step"], "steps_per_cell": dg["steps_per_cell"],
+               "nodes": r.nodes, "steps": dg["steps"], "periods": dg["periods"],
+               "wall_time": dg["wall_time"], "success": r.success, "message": r.message}
+        row.update({k: getattr(r, k) for k in STUDY_KEYS})
+        rows.append(row)
+    return rows
+
+
+def _extrapolate(rows):
+    """Order, Richardson value and error estimate of every quantity (rows coarse → fine)."""
+    dts = [r["dt"] for r in rows]
+    order, rich, err = {}, {}, {}
+    for k in STUDY_KEYS:
+        q = [r[k] for r in rows]
+        if any(x is None for x in q) or not all(r["success"] for r in rows):
+            order[k] = rich[k] = err[k] = None
+            continue
+        rich[k] = _richardson(dts[-2], q[-2], dts[-1], q[-1])
+        order[k] = _order(dts[-3:], q[-3:]) if len(q) >= 3 else None
+        if len(q) >= 3:
+            coarser = _richardson(dts[-3], q[-3], dts[-2], q[-2])
+            err[k] = abs(rich[k] - coarser) / (dts[-3] / dts[-1] - 1.0)
+        else:
+            err[k] = None
+    return {"order": order, "richardson": rich, "error": err}
+
+
+# ----------------------------------------------------------------------------- the table
+def friction_peak(*, load, ratio=3.0, hk=1.0):
+    """The speed V/V0 of the largest μ on the semi-analytic road, and that μ.
+
+    A log-spaced scan of 61 speeds over 1e-3 ≤ V/V0 ≤ 1e3, refined by bounded Brent.
+    """
+    import analytic  # the comparison layer may import the roads; the adapter itself does not
+    from scipy.optimize import minimize_scalar
+
+    def neg_mu(lg):
+        return -analytic.solve(load=load, speed=10.0 ** lg, ratio=ratio, hk=hk).mu
+
+    lgs = np.linspace(-3.0, 3.0, 61)
+    vals = [neg_mu(x) for x in lgs]
+    i = int(np.argmin(vals))
+    lo, hi = lgs[max(i - 1, 0)], lgs[min(i + 1, lgs.size - 1)]
+    res = minimize_scalar(neg_mu, bounds=(lo, hi), method="bounded", options={"xatol": 1e-9})
+    return 10.0 ** float(res.x), -float(res.fun)
+
+
+def third_code_table(*, load=0.15, ratio=3.0, hk=1.0, speeds=None, nodes=512,
+                     cells_per_step=(4, 2, 1), mesh_check=False, **options):
+    """Tamaas against the semi-analytic road: μ per dt, order, Richardson μ, analytic μ.
+
+    Parameters
+    ----------
+    load, ratio, hk : float
+        The operating point (default the paper's ratio 3, hk 1 at p̃∞ = 0.15).
+    speeds : sequence of float, optional
+        V/V0; default below, at and above the friction peak: peak/3, peak, 3·peak, the peak
+        from `friction_peak`.
+    nodes : int
+        Tamaas's grid.
+    cells_per_step : sequence of float
+        The time steps of each dt study, in cell crossings (T/N): default 4, 2, 1.
+    mesh_check : bool
+        Add the extrapolation at N/2 (see `dt_study`).
+
+    Returns
+    -------
+    dict
+        Plain data: ``inputs``, ``peak_speed``, ``peak_mu``, ``rows`` (one per speed and dt:
+        speed, dt/τ, dt/T, N, μ, Δ/h, ka, steps, periods, wall time), ``summary`` (one per
+        speed: μ per dt, observed order, Richardson μ and its estimated error, analytic μ,
+        relative difference, Δ/h and ka extrapolated and analytic, N, wall time).
+    """
+    import analytic
+
+    peak, peak_mu = friction_peak(load=load, ratio=ratio, hk=hk)
+    if speeds is None:
+        speeds = (peak / 3.0, peak, 3.0 * peak)
+    rows, summary = [], []
+    for sp in speeds:
+        t_cell = _TWO_PI / (sp * nodes)
+        st = dt_study(load=load, speed=sp, ratio=ratio, hk=hk, nodes=nodes,
+                      dts=[c * t_cell for c in cells_per_step], mesh_check=mesh_check, **options)
+        a = analytic.solve(load=load, speed=sp, ratio=ratio, hk=hk)
+        for r in st["rows"]:
+            rows.append({"speed": sp, **{k: r[k] for k in (
+                "dt", "dt_over_period", "nodes", "mu", "penetration", "ka", "ke_hat", "steps",
+                "periods", "wall_time", "success")}})
+        R, E = st["richardson"], st["error"]
+        summary.append({
+            "speed": sp, "nodes": nodes, "mu_per_dt": [r["mu"] for r in st["rows"]],
+            "dt_over_period": [r["dt_over_period"] for r in st["rows"]],
+            "order": st["order"]["mu"], "mu_richardson": R["mu"], "mu_error": E["mu"],
+            "mu_analytic": a.mu,
+            "relative_difference": None if R["mu"] is None else R["mu"] / a.mu - 1.0,
+            "penetration_richardson": R["penetration"], "penetration_analytic": a.penetration,
+            "ka_richardson": R["ka"], "ka_analytic": a.ka,
+            "ke_hat_richardson": R["ke_hat"], "ke_hat_analytic": a.ke_hat,
+            "mesh": None if st["mesh"] is None else st["mesh"]["difference"]["mu"],
+            "wall_time": st["wall_time"], "steps": sum(r["steps"] for r in st["rows"]),
+            "success": st["success"]})
+    return {"inputs": {"load": load, "ratio": ratio, "hk": hk, "nodes": nodes,
+                       "cells_per_step": list(cells_per_step), **options},
+            "peak_speed": peak, "peak_mu": peak_mu, "rows": rows, "summary": summary,
+            "tamaas_version": _tamaas_version()}
+
+
+def _tamaas_version():
+    return str(_import_tamaas().__version__)
+
+
+def format_table(data):
+    """The summary of `third_code_table` as a Markdown table (with its parameters above it)."""
+    inp = data["inputs"]
+    lines = [f"Tamaas {data['tamaas_version']} against the semi-analytic road: p̃∞ = "
+             f"{inp['load']:g}, E∞/E0 = {inp['ratio']:g}, hk = {inp['hk']:g}, N = "
+             f"{inp['nodes']}, dt = {', '.join(f'{c:g}' for c in inp['cells_per_step'])} × T/N "
+             f"(friction peak at V/V0 = {data['peak_speed']:.4g}, μ = {data['peak_mu']:.5f}).",
+             "",
+             "| V/V0 | μ per dt (coarse → fine) | order | Richardson μ | est. error | "
+             "analytic μ | difference | wall time |",
+             "|---|---|---|---|---|---|---|---|"]
+    for s in data["summary"]:
+        order = "–" if s["order"] is None else f"{s['order']:.2f}"
+        err = "–" if s["mu_error"] is None else f"{s['mu_error']:.1e}"
+        rd = "–" if s["relative_difference"] is None else f"{100 * s['relative_difference']:+.3f} %"
+        lines.append(f"| {s['speed']:.4g} | {', '.join(f'{m:.5f}' for m in s['mu_per_dt'])} | "
+                     f"{order} | {s['mu_richardson']:.6f} | {err} | {s['mu_analytic']:.6f} | "
+                     f"{rd} | {s['wall_time']:.0f} s |")
+    return "\n".join(lines)
+
+
+def plot_dt_convergence(ax, data):
+    """Relative error of Tamaas's μ against the semi-analytic road, against dt/T.
+
+    Parameters
+    ----------
+    ax : matplotlib Axes
+    data : dict
+        The output of `third_code_table`.
+
+    Returns
+    -------
+    ax
+        Markers: each dt; dashed: the Richardson value's error; dotted: slope 1.
+    """
+    import matplotlib
+    matplotlib.use("Agg", force=False)
+
+    for i, s in enumerate(data["summary"]):
+        colour = f"C{i}"
+        x = np.asarray(s["dt_over_period"])
+        y = np.abs(np.asarray(s["mu_per_dt"]) / s["mu_analytic"] - 1.0)
+        ax.loglog(x, y, "o-", color=colour, label=f"V/V0 = {s['speed']:.3g}")
+        if s["relative_difference"] is not None:
+            ax.axhline(abs(s["relative_difference"]), color=colour, ls="--", lw=0.8)
+    x = np.asarray(data["summary"][0]["dt_over_period"])
+    y0 = np.abs(np.asarray(data["summary"][0]["mu_per_dt"]) / data["summary"][0]["mu_analytic"] - 1.0)
+    ax.loglog(x, y0[0] * x / x[0], ":", color="0.4", label="slope 1")
+    inp = data["inputs"]
+    ax.set_xlabel("dt / T (time step over the period transit time)")
+    ax.set_ylabel("|μ_Tamaas / μ_analytic − 1|")
+    ax.set_title(f"Tamaas, backward Euler: p̃∞ = {inp['load']:g}, E∞/E0 = {inp['ratio']:g}, "
+                 f"hk = {inp['hk']:g}, N = {inp['nodes']} (dashed: Richardson)", fontsize=9)
+    ax.legend(fontsize=8)
+    return ax
