@@ -175,6 +175,33 @@ def test_richardson_mu_matches_the_analytic_road(peak_study):
     assert abs(st["richardson"]["ke_hat"] - a.ke_hat) <= 1e-3                 # measured 1e-4
 
 
+# ----------------------------------------------------------------------------- invariance
+def test_poisson_ratio_drops_out(monkeypatch):
+    """ν only scales Tamaas's E* = 2G∞/(1 − ν) with G∞ = 1: every output is unchanged (measured
+    to 4e-16; bounded by Tamaas's tolerance 1e-10, in case its iterations take another path)."""
+    ref = peer.solve(load=0.15, speed=1.0, nodes=64)
+    nu = 0.3
+    monkeypatch.setattr(peer, "_NU", nu)
+    monkeypatch.setattr(peer, "_E_TAMAAS", 2.0 * (1.0 + nu))
+    monkeypatch.setattr(peer, "_ESTAR0", 2.0 * (1.0 + nu) / (1.0 - nu * nu))
+    r = peer.solve(load=0.15, speed=1.0, nodes=64)
+    for key, value in ref.scalars().items():
+        assert getattr(r, key) == pytest.approx(value, rel=1e-10, abs=ROUNDOFF), key
+
+
+def test_amplitude_scaling():
+    """The problem is linear in h at fixed p̃∞/hk: ka, Δ/h, kê and v/h are unchanged, σ and μ
+    scale with hk (measured to 9e-16; bounded by Tamaas's tolerance 1e-10)."""
+    a = peer.solve(load=0.15, speed=1.0, hk=1.0, nodes=64)
+    b = peer.solve(load=0.015, speed=1.0, hk=0.1, nodes=64)
+    for key in ("ka", "ke", "ke_hat", "penetration", "contact_fraction"):
+        assert getattr(b, key) == pytest.approx(getattr(a, key), rel=1e-10), key
+    assert b.mu == pytest.approx(0.1 * a.mu, rel=1e-10)
+    np.testing.assert_allclose(b.fields().pressure, 0.1 * a.fields().pressure,
+                               atol=1e-10 * a.max_pressure)
+    np.testing.assert_allclose(b.fields().displacement, a.fields().displacement, atol=1e-10)
+
+
 # ----------------------------------------------------------------------------- protocol
 def test_result_protocol_and_json():
     r = peer.solve(load=0.15, speed=1.0, nodes=64)
@@ -195,7 +222,7 @@ def test_result_protocol_and_json():
 
 def test_dt_is_snapped_and_said():
     t_cell = 2 * math.pi / (1.0 * 64)
-    r = peer.solve(load=0.15, speed=1.0, nodes=64, dt=2.7 * t_cell)  # geometrically nearest divisor: 2
+    r = peer.solve(load=0.15, speed=1.0, nodes=64, dt=2.7 * t_cell)  # nearest divisor (log): 2
     assert r.dt == pytest.approx(2 * t_cell) and r.diagnostics["cells_per_step"] == 2
     assert any("snapped" in w for w in r.warnings)
     r = peer.solve(load=0.15, speed=1.0, nodes=64, dt=0.3 * t_cell)  # 1/3 cell per step
@@ -248,7 +275,7 @@ def test_table_and_figure(tmp_path):
     assert s["order"] is None and s["mu_error"] is None and len(s["mu_per_dt"]) == 2
     assert abs(s["relative_difference"]) < 0.01   # measured −0.34 % at N = 64
     text = peer.format_table(data)
-    assert "| 1 |" in text and "N = 64" in text
+    assert "| 1 | 64 |" in text and "p̃∞ = 0.15" in text
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
