@@ -1,0 +1,2 @@
+"""The benchmark suite's data: ``suite.json``, ``materials/``, ``profiles/``, ``fields/``
+(read by :mod:`comparisons.suite`)."""

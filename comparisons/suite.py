@@ -1,0 +1,1087 @@
+"""The certified benchmark suite: steady viscoelastic sliding cases with certified digits.
+
+    python -m comparisons suite --export DIR [--cases NAME ...]
+    python -m comparisons suite --check [--cases NAME ...] [--out DIR] [--resume] [--workers W]
+    python -m comparisons suite --certify [--cases NAME ...]          (maintainers)
+
+The suite lives in ``comparisons/data/suite/``: ``suite.json`` (the cases, their inputs and their
+certified values), the profile and Prony files it names (formats of :func:`bem.read_profile` and
+:func:`bem.read_prony`) and one fields file per case (``fields/NAME.csv``).
+
+How a value is certified (one rule for every case)
+--------------------------------------------------
+Every case is solved by the BEM on the meshes ``nodes`` (powers of two).  The convergence study of
+a scalar q uses the last ``LAST + 1`` meshes: the differences ``d_i = |q_i − q_{i−1}|``, the
+observed order p (least-squares slope of log d_i against log N_i; no certification below 0.5,
+capped at 4), the envelope ``D`` (the smallest line of slope −p above every d_i, taken at the
+finest mesh), the Richardson value ``q_R = q_L + (q_L − q_{L−1})/(2^p − 1)`` and the error
+estimate ``E = D/(2^p − 1)`` (the tail sum of the envelope; it bounds the error of q_L and
+|q_R − q_L|).  When the last two differences are below ROUNDOFF |q| (1e-11 |q|) the study is in
+the round-off regime: ``q_R = q_L`` and ``E`` = the larger of ROUNDOFF |q| and the last difference.
+
+- Two roads (standard linear solid and sinusoid, where the semi-analytic road applies): the
+  certified value is the semi-analytic one, a, and its certified digits are those on which the
+  two roads agree, with the error ``e = |a − q_R|`` (q_R replaced by the finest value q_L when the
+  study is in the round-off regime or its differences scatter without an order ≥ 0.5: the
+  sub-panel edge estimates make single refinements scatter once they reach ~1e-10).
+- BEM only (Prony series, other profiles): the certified value is q_R and ``e = SAFETY · E``
+  (SAFETY = 10).
+
+A failed BEM solve on any of the finest meshes certifies nothing (0 digits, case status
+"incomplete"); ``--check`` then says when a recomputation would certify more.
+
+In both cases the number of certified significant digits is the largest d ≤ MAX_DIGITS (12) with
+``e < ½ · 10^(floor(log10 |value|) − d + 1)``: half a unit of the last certified digit bounds e.
+A quantity that is exact by construction (ka = π in full contact, the input of a
+penetration-controlled case, …) is listed as exact.
+
+Fields (σ, v, gap on the grid x_j = j/M − ½, M = FIELD_POINTS, a subset of the BEM's panel
+centres) carry an absolute error per point: two roads, the semi-analytic value with the largest
+|analytic − BEM| at the point and its two neighbours (finest mesh); BEM only, the finest mesh's
+value with SAFETY × the largest change between the two finest meshes at the point and its two
+neighbours (the tail sum of a first-order sequence, the pointwise order near a contact edge).
+Every error is at least 1e-12 × the largest magnitude of its column (round-off).
+
+`--check` recomputes every case and exits with status 1 when a certified digit changed: a scalar
+moved by half a unit of its last certified digit or more, its recomputed evidence supports fewer
+digits than shipped, a field value moved by more than its certified error, or an exact value
+differs.  Recomputation that supports more digits than shipped is reported (run ``--certify``),
+not a failure.
+
+References
+----------
+Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the problem, the
+standard linear solid of eq. 2.3, the friction of eq. 3.1).
+"""
+from __future__ import annotations
+
+import csv
+import hashlib
+import io
+import json
+import math
+import os
+import shutil
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+DATA = Path(__file__).resolve().parent / "data" / "suite"
+SUITE_FILE = DATA / "suite.json"
+
+SAFETY = 10.0        # margin on the BEM's own error estimate (BEM-only cases and fields)
+MAX_DIGITS = 12      # never more: the BEM's FFT sums and the analytic quadrature are ~1e-13
+LAST = 4             # differences of the finest meshes that make the convergence study
+ROUNDOFF = 1e-11     # relative size of a difference that is round-off, not discretisation
+FIELD_POINTS = 256   # the stated grid of the fields, x_j = j/M − 1/2
+MIN_ORDER = 0.5      # below this observed order nothing is certified (not converging)
+MAX_ORDER = 4.0
+
+#: the certification rule, as written into the suite data and the exported README
+RULE = (
+    "Every case is solved by the BEM on meshes N = 2^10 ... 2^18. The convergence study of a "
+    f"scalar q uses the {LAST + 1} finest meshes: the differences d_i = |q_i - q_(i-1)|, the observed "
+    "order p (least-squares slope of log d_i against log N_i; nothing is certified below "
+    f"{MIN_ORDER}, p is capped at {MAX_ORDER:g}), the envelope D (the smallest line of slope -p above "
+    "every d_i, at the finest mesh), the Richardson value q_R = q_L + (q_L - q_(L-1))/(2^p - 1) and "
+    "the error estimate E = D/(2^p - 1). When the last two differences are below "
+    f"{ROUNDOFF:g} |q| the study is in the round-off regime: q_R = q_L and E is the larger of "
+    f"{ROUNDOFF:g} |q| and the last difference. "
+    "Two roads (standard linear solid and sinusoid): the certified value is the semi-analytic one, "
+    "a, with the error e = |a - q_R| (the digits on which the two roads agree; q_R is replaced by "
+    "the finest value q_L when the study is in the round-off regime or its differences scatter "
+    f"with an observed order below {MIN_ORDER}). BEM only (Prony "
+    f"series, other profiles): the certified value is q_R with e = {SAFETY:g} E. The certified "
+    f"significant digits are the largest d <= {MAX_DIGITS} with e < 1/2 * 10^(floor(log10|value|) "
+    "- d + 1): half a unit of the last certified digit bounds e. Fields on the stated grid carry "
+    "an absolute error per point: two roads, the largest |semi-analytic - BEM(finest N)| at the "
+    f"point and its two neighbours; BEM only, {SAFETY:g} x the largest change between the two "
+    "finest meshes at the point and its neighbours; never below 1e-12 x the largest magnitude "
+    "of the column. A failed solve on any of the finest meshes certifies nothing.")
+
+FIELD_COLUMNS = ("pressure", "displacement", "gap")
+TOP_KEYS = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction", "ka", "ke",
+            "ke_hat")
+PATCH_KEYS = ("summit", "trailing_edge", "leading_edge", "load", "ka", "ke", "ke_hat")
+
+
+class SuiteError(ValueError):
+    """Bad input to the suite (unknown case, unreadable data); one line for the command line."""
+
+
+# --------------------------------------------------------------------------- digits
+def digits(value, error) -> int:
+    """Certified significant digits of ``value`` given an absolute error bound ``error``.
+
+    The largest d in 0..MAX_DIGITS with ``error < ½ · 10^(floor(log10|value|) − d + 1)``;
+    0 for a zero or non-finite value or a non-finite error.
+    """
+    if value is None or error is None or not math.isfinite(value) or not math.isfinite(error) \
+            or value == 0.0:
+        return 0
+    e10 = math.floor(math.log10(abs(value)))
+    for d in range(MAX_DIGITS, 0, -1):
+        if error < 0.5 * 10.0 ** (e10 - d + 1):
+            return d
+    return 0
+
+
+def half_unit(value, ndigits) -> float:
+    """Half a unit of the last of ``ndigits`` significant digits of ``value`` (inf for 0 digits)."""
+    if ndigits <= 0 or value == 0.0:
+        return math.inf
+    return 0.5 * 10.0 ** (math.floor(math.log10(abs(value))) - ndigits + 1)
+
+
+def rounded(value, ndigits) -> str:
+    """``value`` written with ``ndigits`` significant digits ("" when none is certified)."""
+    if value is None or ndigits <= 0 or not math.isfinite(value):
+        return ""
+    e10 = math.floor(math.log10(abs(value))) if value != 0.0 else 0
+    if -5 <= e10 < 6:
+        return f"{value:.{max(ndigits - 1 - e10, 0)}f}"
+    return f"{value:.{ndigits - 1}e}"
+
+
+# --------------------------------------------------------------------------- convergence
+def study(nodes, values, last=LAST):
+    """Convergence study of one scalar over meshes doubling in N (see the module docstring).
+
+    Parameters
+    ----------
+    nodes : sequence of int
+        The meshes, each twice the previous one.
+    values : sequence of float
+        The scalar on each mesh (NaN where the solve failed).
+    last : int
+        Number of finest differences used (``last + 1`` meshes).
+
+    Returns
+    -------
+    dict
+        ``order`` (observed, NaN in the round-off regime or when undetermined), ``richardson``,
+        ``estimate`` (error estimate E, inf when not converging), ``finest`` and ``regime``
+        ("asymptotic", "round-off", "not converging" or "too few meshes").
+    """
+    N = np.asarray(nodes, float)
+    q = np.asarray(values, float)
+    out = {"order": float("nan"), "richardson": float("nan"), "estimate": float("inf"),
+           "finest": float(q[-1]) if q.size else float("nan"), "regime": "too few meshes"}
+    if q.size < last + 1 or not np.all(np.isfinite(q[-(last + 1):])):
+        return out
+    q = q[-(last + 1):]
+    N = N[-(last + 1):]
+    d = np.abs(np.diff(q))
+    floor = ROUNDOFF * float(np.max(np.abs(q)))
+    if np.all(d[-2:] <= floor):
+        out.update(order=float("nan"), richardson=float(q[-1]), estimate=max(floor, float(d[-1])),
+                   regime="round-off")
+        return out
+    dd = np.maximum(d, floor)
+    p = float(-np.polyfit(np.log2(N[1:]), np.log2(dd), 1)[0])
+    out["order"] = p
+    if not p >= MIN_ORDER:
+        out["regime"] = "not converging"
+        return out
+    pu = min(p, MAX_ORDER)
+    r = 2.0 ** pu - 1.0
+    steps = np.arange(-(d.size - 1), 1, dtype=float)  # 0 at the finest difference
+    envelope = float(np.max(dd * 2.0 ** (pu * steps)))
+    out.update(richardson=float(q[-1] + (q[-1] - q[-2]) / r), estimate=envelope / r,
+               regime="asymptotic")
+    return out
+
+
+# --------------------------------------------------------------------------- the suite file
+def load_suite(path=SUITE_FILE) -> dict:
+    """The suite as a dict (``version``, ``cases``: a list of case dicts)."""
+    try:
+        with open(path, encoding="utf-8") as fh:
+            return json.load(fh)
+    except (OSError, ValueError) as exc:
+        raise SuiteError(f"suite data {path}: cannot be read ({exc})") from None
+
+
+def case_names(suite=None) -> list[str]:
+    suite = suite or load_suite()
+    return [c["name"] for c in suite["cases"]]
+
+
+def select(suite, names):
+    """The cases named (all when ``names`` is empty), in suite order; SuiteError for unknown names."""
+    cases = suite["cases"]
+    if not names:
+        return list(cases)
+    known = {c["name"]: c for c in cases}
+    bad = [n for n in names if n not in known]
+    if bad:
+        raise SuiteError(f"--cases {bad[0]!r} is not allowed: one of {', '.join(known)}")
+    return [c for c in cases if c["name"] in set(names)]
+
+
+def get_case(name, suite=None) -> dict:
+    return select(suite or load_suite(), [name])[0]
+
+
+def two_roads(point) -> bool:
+    """True when the semi-analytic road applies (sinusoid on the standard linear solid)."""
+    return not point.get("profile") and not point.get("prony")
+
+
+def data_path(rel) -> Path:
+    return DATA / rel
+
+
+def _problem(point, base=DATA):
+    """(profile, material) objects of the BEM for an operating point dict."""
+    import bem
+    if point.get("prony"):
+        material = bem.read_prony(Path(base) / point["prony"])
+    else:
+        material = bem.Prony.standard_linear_solid(point.get("ratio", 3.0))
+    if point.get("profile"):
+        profile = bem.read_profile(Path(base) / point["profile"])
+    else:
+        profile = bem.Sinusoid(point.get("hk", 1.0))
+    return profile, material
+
+
+def _control(point):
+    if point.get("load") is not None:
+        return {"load": float(point["load"])}
+    return {"penetration": float(point["penetration"])}
+
+
+def analytic_solution(point):
+    """The semi-analytic solution at an operating point (load or penetration control).
+
+    The one place the analytic road's call shape for each control lives.
+    """
+    import analytic
+    return analytic.solve(**_control(point), speed=float(point["speed"]),
+                          ratio=float(point.get("ratio", 3.0)), hk=float(point.get("hk", 1.0)))
+
+
+#: Krylov tolerance of the suite's BEM solves (relative to h k): below the discretisation error
+#: at the finest mesh, so that the convergence study sees the mesh and not the linear solver
+#: (the default 1e-10 leaves Δ/h changes of ~1e-11 at N = 2^18)
+BEM_TOL = 1e-12
+
+
+def bem_solution(point, nodes, base=DATA, problem=None):
+    """The BEM solution at an operating point on ``nodes`` panels (Krylov tolerance BEM_TOL)."""
+    import bem
+    profile, material = problem or _problem(point, base)
+    return bem.solve(profile=profile, material=material, speed=float(point["speed"]),
+                     nodes=int(nodes), tol=BEM_TOL, **_control(point))
+
+
+def bem_fields(res):
+    """(x, pressure, displacement, gap) of a BEM result at its panel centres."""
+    f = res.fields() if callable(getattr(res, "fields", None)) else res
+    return (np.asarray(f.x_over_lambda, float), np.asarray(f.pressure, float),
+            np.asarray(f.displacement, float), np.asarray(f.gap, float))
+
+
+# --------------------------------------------------------------------------- profiles
+class ProfileShape:
+    """k·y of the indenter as a trigonometric series, evaluated anywhere (units of :mod:`bem`).
+
+    Built from the operating point: ``hk`` (sinusoid) or the samples of a profile file (their
+    trigonometric interpolant, as :class:`bem.SampledProfile`).  Used for the summit of each
+    contact patch and, in :mod:`comparisons.verify`, for the slope in the friction integral.
+    """
+
+    def __init__(self, point, base=DATA):
+        if point.get("profile"):
+            import bem
+            prof = bem.read_profile(Path(base) / point["profile"])
+            y = np.asarray(prof.heights, float)
+            m = y.size
+            f = np.fft.rfft(y) / m
+            c = 2.0 * f[1:]
+            if m % 2 == 0:
+                c[-1] = f[-1]
+            self.n = np.arange(1, f.size, dtype=float)
+            self.c = c * np.exp(1j * np.pi * self.n)  # samples start at X = −1/2
+            self.sinusoid = False
+        else:
+            self.n = np.array([1.0])
+            self.c = np.array([float(point.get("hk", 1.0)) + 0j])
+            self.sinusoid = True
+        self.amplitude = float(self.max_value())
+
+    def __call__(self, x, der=0):
+        """d^der(k y)/dX^der at X = x (X = x/λ, crest of the sinusoid at 0; mean removed)."""
+        x = np.atleast_1d(np.asarray(x, float))
+        out = np.zeros(x.shape)
+        for lo in range(0, self.n.size, 64):  # blocks keep the phase matrix small
+            n = self.n[lo:lo + 64]
+            c = self.c[lo:lo + 64] * (2j * np.pi * n) ** der
+            out += (np.exp(2j * np.pi * np.outer(x, n)) @ c).real
+        return out
+
+    def _newton_max(self, x, lo=-math.inf, hi=math.inf):
+        for _ in range(60):
+            d1, d2 = float(self(x, 1)[0]), float(self(x, 2)[0])
+            if d2 >= 0.0:
+                break
+            step = -d1 / d2
+            x = min(max(x + step, lo), hi)
+            if abs(step) < 1e-15:
+                break
+        return x
+
+    def max_value(self):
+        xs = np.arange(4096) / 4096 - 0.5
+        ys = self(xs)
+        j = int(np.argmax(ys))
+        return float(self(self._newton_max(float(xs[j])))[0])
+
+    def summit(self, trailing, leading):
+        """X of the highest profile point in [trailing, leading] (sub-1e-13 by Newton)."""
+        if self.sinusoid:
+            return float(round((0.5 * (trailing + leading))))  # the crest at an integer X
+        xs = np.linspace(trailing, leading, 2049)
+        j = int(np.argmax(self(xs)))
+        return self._newton_max(float(xs[j]), trailing, leading)
+
+
+# --------------------------------------------------------------------------- generated inputs
+SELF_AFFINE = {"seed": 20140392, "samples": 256, "modes": 16, "hurst": 0.8}
+
+
+def self_affine_heights(seed=20140392, samples=256, modes=16, hurst=0.8):
+    """A self-affine periodic profile k·y at x/λ = j/samples − 1/2 (deterministic).
+
+    Modes n = 1..modes with amplitudes n^−(1+H) (power spectrum ∝ q^−2(1+H), Hurst exponent H)
+    and phases uniform in [0, 2π) from ``numpy.random.default_rng(seed)``; scaled so that the
+    highest of 2^16 evenly spaced points of the series is 1 above its mean.  ``samples`` > 2 modes,
+    so the samples' trigonometric interpolant is the series itself.
+    """
+    rng = np.random.default_rng(seed)
+    n = np.arange(1, modes + 1, dtype=float)
+    amp = n ** -(1.0 + hurst)
+    phase = rng.uniform(0.0, 2.0 * np.pi, modes)
+
+    def series(x):
+        return np.cos(2.0 * np.pi * np.outer(x, n) + phase) @ amp
+
+    scale = float(np.max(series(np.arange(1 << 16) / (1 << 16) - 0.5)))
+    return series(np.arange(samples) / samples - 0.5) / scale
+
+
+def harmonic_heights(amplitudes, phases, samples=64):
+    """k·y = Σ a_n cos(2π n x/λ + φ_n) at x/λ = j/samples − 1/2 (exact for n < samples/2)."""
+    x = np.arange(samples) / samples - 0.5
+    n = np.arange(1, len(amplitudes) + 1, dtype=float)
+    return np.cos(2.0 * np.pi * np.outer(x, n) + np.asarray(phases, float)) @ np.asarray(amplitudes, float)
+
+
+def profile_file_text(heights, comment) -> str:
+    """A profile file (format of :func:`bem.read_profile`): ``#`` comment, header, two columns."""
+    m = len(heights)
+    lines = [f"# {line}" for line in comment.splitlines()] + ["x_over_lambda,ky"]
+    lines += [f"{j / m - 0.5!r},{float(h)!r}" for j, h in enumerate(heights)]
+    return "\n".join(lines) + "\n"
+
+
+# --------------------------------------------------------------------------- patches
+def patch_records(res, shape):
+    """The contact patches of a BEM result as dicts keyed by PATCH_KEYS.
+
+    Edges are unwrapped so that the patch centre lies within ½ of its summit (the highest
+    profile point inside the patch); ka = π·width, ke = 2π(centre − summit),
+    kê = 2π(centroid − summit) (for the sinusoid the summit is the crest at 0 and these are the
+    conventions' ka, ke, kê).  Sorted by centre, taken in [−½, ½).
+    """
+    out = []
+    for p in getattr(res, "patches", ()) or ():
+        t, l = float(p.trailing_edge), float(p.leading_edge)
+        centroid = getattr(p, "centroid", None)
+        if centroid is None:  # older result objects: kê measured from X = 0
+            centroid = float(p.ke_hat) / (2.0 * math.pi)
+        summit = shape.summit(t, l)
+        shift = -math.floor(0.5 * (t + l) - summit + 0.5)
+        t, l = t + shift, l + shift
+        centroid = float(centroid) - math.floor(float(centroid) - summit + 0.5)
+        out.append({"summit": summit, "trailing_edge": t, "leading_edge": l,
+                    "load": float(p.load), "ka": math.pi * (l - t),
+                    "ke": math.pi * (t + l) - 2.0 * math.pi * summit,
+                    "ke_hat": 2.0 * math.pi * (centroid - summit)})
+    return sorted(out, key=lambda r: _wrap(0.5 * (r["trailing_edge"] + r["leading_edge"])))
+
+
+def _wrap(x):
+    """x taken into [−½, ½)."""
+    return x - math.floor(x + 0.5)
+
+
+def match_patches(reference, patches):
+    """For each patch of ``reference``, the patch of ``patches`` whose centre is nearest (modulo
+    one period) if it is within half the reference patch's width and no other reference patch
+    claims it; None otherwise (a patch that is missing or split on this mesh)."""
+    if patches is None:
+        return [None] * len(reference)
+    centre = lambda r: 0.5 * (r["trailing_edge"] + r["leading_edge"])  # noqa: E731
+    picks = []
+    for r in reference:
+        dist = [abs(_wrap(centre(q) - centre(r))) for q in patches]
+        j = int(np.argmin(dist)) if dist else -1
+        ok = j >= 0 and dist[j] < 0.5 * (r["leading_edge"] - r["trailing_edge"])
+        picks.append(j if ok else None)
+    taken = [j for j in picks if j is not None]
+    return [patches[j] if j is not None and taken.count(j) == 1 else None for j in picks]
+
+
+# --------------------------------------------------------------------------- one case
+def _scalar_keys(point, full_contact, n_patches):
+    keys = ["mu", "tau_f"]
+    if point.get("load") is None:
+        keys += ["load"]
+    elif not full_contact:  # in full contact Δ/h = 1 and s = 0 exactly
+        keys += ["penetration", "separation"]
+    if not full_contact:
+        keys += ["contact_fraction"]
+        if n_patches == 1:
+            keys += ["ka", "ke"]
+    if full_contact or n_patches == 1:
+        keys += ["ke_hat"]
+    return keys
+
+
+def _value(obj, key):
+    v = getattr(obj, key, None)
+    return float("nan") if v is None else float(v)
+
+
+def _certify(value_ref, seq_nodes, seq_values, roads):
+    st = study(seq_nodes, seq_values)
+    ev = {"nodes": [int(n) for n in seq_nodes], "values": [_num(v) for v in seq_values],
+          "order": _num(st["order"]), "richardson": _num(st["richardson"]),
+          "estimate": _num(st["estimate"]), "regime": st["regime"]}
+    if roads:
+        # the BEM's best value: extrapolated when its study is asymptotic, else the finest mesh
+        # (no study at all, e.g. a failed mesh, certifies nothing)
+        best = st["richardson"] if st["regime"] == "asymptotic" else st["finest"]
+        value = value_ref
+        err = abs(value_ref - best) if (math.isfinite(best) and math.isfinite(value_ref)
+                                        and st["regime"] != "too few meshes") else math.inf
+        how = "two roads"
+    else:
+        value = st["richardson"]
+        err = SAFETY * st["estimate"]
+        how = "bem convergence"
+    nd = digits(value, err)
+    rec = {"value": _num(value), "digits": nd, "rounded": rounded(value, nd), "error": _num(err),
+           "method": how, "bem": ev}
+    if roads:
+        rec["analytic"] = _num(value_ref)
+    return rec
+
+
+def _num(v):
+    """JSON-safe float (None for NaN/inf)."""
+    if v is None:
+        return None
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def compute(case, base=DATA, progress=None):
+    """Recompute one case: its certified scalars, patches and fields.
+
+    Parameters
+    ----------
+    case : dict
+        A case of ``suite.json`` (``name``, ``point``, ``nodes``).
+    base : path
+        Where the profile and Prony files of the case are.
+    progress : callable, optional
+        Called with one line of text per mesh.
+
+    Returns
+    -------
+    (dict, dict)
+        The ``certified`` record (as stored in ``suite.json``) and the fields columns on the
+        stated grid (``x_over_lambda`` and, for each of FIELD_COLUMNS, the value and ``<col>_err``).
+    """
+    point = case["point"]
+    nodes = [int(n) for n in case["nodes"]]
+    roads = two_roads(point)
+    problem = _problem(point, base)
+    shape = ProfileShape(point, base)
+    M = int(case.get("field_points", FIELD_POINTS))
+    if nodes[-1] % M or nodes[-2] % M:
+        raise SuiteError(f"case {case['name']}: the two finest meshes must be multiples of {M}")
+
+    runs, patches, failures = [], [], []
+    grid_fields = {}
+    for n in nodes:
+        t0 = time.perf_counter()
+        r = bem_solution(point, n, base, problem)
+        runs.append(r if r.success else None)
+        if not r.success:
+            failures.append(f"N = {n}: {r.message.splitlines()[0][:200]}")
+        patches.append(patch_records(r, shape) if r.success else None)
+        if n in nodes[-2:] and r.success:
+            x, p, v, g = bem_fields(r)
+            step = n // M
+            grid_fields[n] = {"x_over_lambda": x[::step], "pressure": p[::step],
+                              "displacement": v[::step], "gap": g[::step]}
+        if progress:
+            progress(f"N = {n}: {'ok' if r.success else 'FAILED'} ({time.perf_counter() - t0:.2f} s)")
+
+    ref = analytic_solution(point) if roads else None
+    if ref is not None and not ref.success:
+        failures.append(f"semi-analytic: {ref.message}")
+        ref_ok = False
+    else:
+        ref_ok = ref is not None
+    fin = next((r for r in reversed(runs) if r is not None), None)
+    full = bool(ref.full_contact) if ref_ok else bool(fin.full_contact) if fin else False
+    fulls = {bool(r.full_contact) for r in runs if r is not None}
+    if full:
+        npatch = 1
+    elif patches[-1] is not None:
+        npatch = len(patches[-1])
+    else:
+        npatch = 1 if roads else 0
+    keys = _scalar_keys(point, full, npatch)
+
+    scalars = {}
+    for k in keys:
+        seq = [_value(r, k) if r is not None else float("nan") for r in runs]
+        if k in ("ka", "ke", "ke_hat") and not full and not roads:
+            # single patch on another profile: measured from its summit
+            seq = [p[0][k] if p and len(p) == 1 else float("nan") for p in patches]
+        a = _value(ref, k) if ref_ok else float("nan")
+        scalars[k] = _certify(a, nodes, seq, roads and ref_ok)
+        if roads and not ref_ok:
+            scalars[k]["method"] = "two roads (semi-analytic failed)"
+
+    exact = {"full_contact": full}
+    if point.get("penetration") is not None:
+        exact["penetration"] = float(point["penetration"])
+    if full:
+        exact.update(ka=math.pi, contact_fraction=1.0, penetration=1.0, separation=0.0, ke=None)
+
+    patch_out = []
+    if not full and npatch > 1:
+        matched = [match_patches(patches[-1], p) for p in patches]
+        for j in range(npatch):
+            rec = {}
+            for k in PATCH_KEYS:
+                seq = [m[j][k] if m[j] is not None else float("nan") for m in matched]
+                rec[k] = _certify(float("nan"), nodes, seq, False)
+            patch_out.append(rec)
+
+    fields, field_summary = _certified_fields(point, nodes, grid_fields, ref if ref_ok else None,
+                                              M, roads)
+    status = "complete"
+    notes = []
+    if failures:
+        status = "incomplete"
+        notes.append("solver failures: " + "; ".join(failures))
+    if len(fulls) > 1 or (ref_ok and fin is not None and bool(fin.full_contact) != full):
+        status = "incomplete"
+        notes.append("the roads or meshes disagree on full contact")
+    certified = {"method": "two roads" if roads else "bem convergence", "status": status,
+                 "notes": notes, "scalars": scalars, "exact": exact, "patches": patch_out,
+                 "fields": field_summary}
+    return certified, fields
+
+
+def _neighbour_max(a):
+    """max over each point and its two periodic neighbours."""
+    return np.maximum(np.maximum(a, np.roll(a, 1)), np.roll(a, -1))
+
+
+def _certified_fields(point, nodes, grid_fields, ref, M, roads):
+    x = np.arange(M) / M - 0.5
+    out = {"x_over_lambda": x}
+    finest, second = nodes[-1], nodes[-2]
+    bl = grid_fields.get(finest)
+    bp = grid_fields.get(second)
+    summary = {"file": None, "points": M, "grid": f"x_over_lambda = j/{M} - 1/2, j = 0..{M - 1}",
+               "max_error": {}, "source": None}
+    if roads and ref is not None:
+        f = ref.fields(x)
+        vals = {"pressure": f.pressure, "displacement": f.displacement, "gap": f.gap}
+        summary["source"] = (f"semi-analytic values; error = largest |semi-analytic − BEM "
+                             f"(N = {finest})| at the point and its neighbours")
+        for c in FIELD_COLUMNS:
+            a = np.asarray(vals[c], float)
+            diff = np.abs(a - bl[c]) if bl is not None else np.full(M, np.inf)
+            out[c] = a
+            out[c + "_err"] = np.maximum(_neighbour_max(diff), 1e-12 * np.max(np.abs(a)))
+    else:
+        summary["source"] = (f"BEM values at N = {finest}; error = {SAFETY:g} × largest change "
+                             f"from N = {second} at the point and its neighbours")
+        for c in FIELD_COLUMNS:
+            if bl is None:
+                out[c] = np.full(M, np.nan)
+                out[c + "_err"] = np.full(M, np.inf)
+                continue
+            a = np.asarray(bl[c], float)
+            diff = np.abs(a - bp[c]) if bp is not None else np.full(M, np.inf)
+            out[c] = a
+            out[c + "_err"] = np.maximum(SAFETY * _neighbour_max(diff), 1e-12 * np.max(np.abs(a)))
+    for c in FIELD_COLUMNS:
+        summary["max_error"][c] = _num(float(np.max(out[c + "_err"])))
+    return out, summary
+
+
+# --------------------------------------------------------------------------- fields files
+FIELDS_HEADER = ["x_over_lambda"] + [c for col in FIELD_COLUMNS for c in (col, col + "_err")]
+
+
+def write_fields(path, case, fields):
+    """The fields CSV: ``#`` lines (case, grid, units, how the errors are certified), a header,
+    then one row per grid point; values to 17 significant digits, errors to 3."""
+    buf = io.StringIO()
+    buf.write(f"# viscosine benchmark suite, case {case['name']}: {case['title']}\n")
+    buf.write(f"# grid: {case['certified']['fields']['grid']}\n")
+    buf.write("# units: pressure = sigma (1 - nu^2)/E0, displacement = v/h (into the body, from the "
+              "mean line of the deformed surface), gap = gap/h\n")
+    buf.write("# <column>_err: certified absolute error of the value on the same row\n")
+    buf.write(f"# {case['certified']['fields']['source']}\n")
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(FIELDS_HEADER)
+    for j in range(len(fields["x_over_lambda"])):
+        row = [repr(float(fields["x_over_lambda"][j]))]
+        for c in FIELD_COLUMNS:
+            row += [repr(float(fields[c][j])), f"{float(fields[c + '_err'][j]):.3e}"]
+        w.writerow(row)
+    _atomic_write(path, buf.getvalue())
+
+
+def read_fields(path) -> dict:
+    """The columns of a fields CSV written by :func:`write_fields` (``#`` lines skipped)."""
+    with open(path, encoding="utf-8") as fh:
+        rows = [r for r in csv.reader(line for line in fh if not line.startswith("#"))]
+    head = rows[0]
+    data = np.array(rows[1:], dtype=float)
+    return {h: data[:, i] for i, h in enumerate(head)}
+
+
+def _atomic_write(path, text):
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(path.name + ".part")
+    with open(tmp, "w", encoding="utf-8", newline="") as fh:
+        fh.write(text)
+    os.replace(tmp, path)
+
+
+def case_fields(case, base=DATA) -> dict:
+    """The shipped fields of a case (columns of its fields CSV)."""
+    return read_fields(Path(base) / case["certified"]["fields"]["file"])
+
+
+# --------------------------------------------------------------------------- compare
+def _as_float(v):
+    return float("nan") if v is None else float(v)
+
+
+def compare(old, new, old_fields=None, new_fields=None):
+    """Differences between a shipped certification and a recomputed one.
+
+    Returns
+    -------
+    (list of str, list of str)
+        ``changed``: every certified digit that changed (each line names the quantity, both
+        values and the difference); ``raised``: quantities the recomputation certifies to more
+        digits than shipped.
+    """
+    changed, raised = [], []
+
+    def one(label, o, n):
+        if n is None:
+            if o["digits"] > 0:
+                changed.append(f"{label}: certified {o['rounded']} ({o['digits']} digits) but no "
+                               "longer computed")
+            return
+        ov, nv = _as_float(o["value"]), _as_float(n["value"])
+        if o["digits"] > 0:
+            diff = abs(nv - ov) if math.isfinite(nv) else math.inf
+            if not diff < half_unit(ov, o["digits"]):
+                changed.append(f"{label}: certified {o['rounded']} ({o['digits']} digits), "
+                               f"recomputed {nv!r}, difference {diff:.3e} ≥ half a unit "
+                               f"{half_unit(ov, o['digits']):.1e}")
+            elif n["digits"] < o["digits"]:
+                changed.append(f"{label}: certified to {o['digits']} digits, the recomputed "
+                               f"evidence supports {n['digits']} (error {n['error']})")
+        if n["digits"] > o["digits"]:
+            raised.append(f"{label}: {o['digits']} → {n['digits']} digits")
+
+    for k, o in old["scalars"].items():
+        one(k, o, new["scalars"].get(k))
+    for k in new["scalars"]:
+        if k not in old["scalars"] and new["scalars"][k]["digits"] > 0:
+            raised.append(f"{k}: newly certified ({new['scalars'][k]['digits']} digits)")
+    for k, v in old["exact"].items():
+        if new["exact"].get(k, "missing") != v:
+            changed.append(f"{k}: exact value {v!r}, recomputed {new['exact'].get(k, 'missing')!r}")
+    if len(old["patches"]) != len(new["patches"]):
+        changed.append(f"patches: {len(old['patches'])} certified, {len(new['patches'])} recomputed")
+    else:
+        for j, (po, pn) in enumerate(zip(old["patches"], new["patches"])):
+            for k in PATCH_KEYS:
+                one(f"patch {j + 1} {k}", po[k], pn[k])
+    if old_fields is not None and new_fields is not None:
+        for c in FIELD_COLUMNS:
+            o, n, e = old_fields[c], new_fields[c], old_fields[c + "_err"]
+            bad = ~(np.abs(n - o) <= e)
+            if np.any(bad):
+                j = int(np.flatnonzero(bad)[0])
+                changed.append(f"field {c}: {int(bad.sum())} values moved by more than their "
+                               f"certified error (first at x/λ = {old_fields['x_over_lambda'][j]:.6f}: "
+                               f"{o[j]!r} → {n[j]!r}, error {e[j]:.2e})")
+    return changed, raised
+
+
+# --------------------------------------------------------------------------- check
+def _case_key(case) -> str:
+    """Hash of what determines a case's recomputation (its definition and the input files)."""
+    import viscosine
+    h = hashlib.sha256()
+    h.update(json.dumps({k: case[k] for k in ("name", "point", "nodes")}, sort_keys=True).encode())
+    h.update(str(case.get("field_points", FIELD_POINTS)).encode())
+    for k in ("profile", "prony"):
+        if case["point"].get(k):
+            h.update((DATA / case["point"][k]).read_bytes())
+    h.update(viscosine.__version__.encode())
+    return h.hexdigest()[:20]
+
+
+def _recompute(name):
+    """Worker entry: recompute one case by name (plain data in, plain data out)."""
+    case = get_case(name)
+    t0 = time.perf_counter()
+    cert, fields = compute(case)
+    return {"name": name, "key": _case_key(case), "certified": cert,
+            "fields": {k: np.asarray(v).tolist() for k, v in fields.items()},
+            "seconds": time.perf_counter() - t0}
+
+
+def _recomputed(cases, out, resume, workers, scheduler, log):
+    """Yield each case's recomputation (reusing finished ones from ``out`` with ``resume``)."""
+    todo = []
+    for case in cases:
+        path = Path(out) / f"{case['name']}.json" if out else None
+        if resume and path is not None and path.exists():
+            try:
+                doc = json.loads(path.read_text(encoding="utf-8"))
+            except ValueError:
+                doc = None
+            if doc and doc.get("key") == _case_key(case):
+                log(f"suite: {case['name']}: reused from {path}")
+                yield doc
+                continue
+        todo.append(case["name"])
+
+    def save(doc):
+        if out:
+            _atomic_write(Path(out) / f"{doc['name']}.json", json.dumps(doc))
+        return doc
+
+    if scheduler:
+        from distributed import Client, as_completed
+        with Client(scheduler) as client:
+            futs = client.map(_recompute, todo, pure=False)
+            for fut in as_completed(futs):
+                yield save(fut.result())
+    elif workers and workers > 1 and len(todo) > 1:
+        from concurrent.futures import ProcessPoolExecutor, as_completed
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            futs = [pool.submit(_recompute, n) for n in todo]
+            for fut in as_completed(futs):
+                yield save(fut.result())
+    else:
+        for n in todo:
+            yield save(_recompute(n))
+
+
+def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None, suite=None):
+    """Recompute the cases and compare them with the shipped certification.
+
+    Parameters
+    ----------
+    names : sequence of str
+        Cases to check (all when empty).
+    out : path, optional
+        Folder where each recomputed case is written as soon as it is done.
+    resume : bool
+        Reuse the cases already recomputed in ``out`` (same definition, same version).
+    workers : int
+        Processes (1: in this process).
+    scheduler : str, optional
+        Address of a Dask distributed scheduler (instead of local processes).
+    log : callable, optional
+        Progress lines (default: standard error).
+    suite : dict, optional
+        The suite to check against (default: the shipped one).
+
+    Returns
+    -------
+    dict
+        ``ok`` (no certified digit changed), ``cases`` (per case: name, changed, raised, seconds)
+        and ``seconds``.
+    """
+    log = log or (lambda s: print(s, file=sys.stderr, flush=True))
+    suite = suite or load_suite()
+    cases = select(suite, names)
+    t0 = time.monotonic()
+    results = []
+    by_name = {c["name"]: c for c in cases}
+    for i, doc in enumerate(_recomputed(cases, out, resume, workers, scheduler, log), 1):
+        case = by_name[doc["name"]]
+        old_fields = case_fields(case)
+        new_fields = {k: np.asarray(v, float) for k, v in doc["fields"].items()}
+        changed, raised = compare(case["certified"], doc["certified"], old_fields, new_fields)
+        results.append({"name": doc["name"], "changed": changed, "raised": raised,
+                        "seconds": doc.get("seconds", 0.0), "status": doc["certified"]["status"],
+                        "notes": doc["certified"]["notes"]})
+        what = "CHANGED" if changed else "ok"
+        log(f"suite: [{i}/{len(cases)}] {doc['name']}: {what} ({doc.get('seconds', 0.0):.1f} s, "
+            f"{time.monotonic() - t0:.0f} s in all)")
+    order = {c["name"]: i for i, c in enumerate(cases)}
+    results.sort(key=lambda r: order[r["name"]])
+    return {"ok": not any(r["changed"] for r in results), "cases": results,
+            "seconds": time.monotonic() - t0}
+
+
+# --------------------------------------------------------------------------- certify
+def certify(names=(), log=None, suite_file=SUITE_FILE):
+    """Recompute the cases and write their certification into the suite data (maintainers)."""
+    log = log or (lambda s: print(s, file=sys.stderr, flush=True))
+    suite = load_suite(suite_file)
+    cases = select(suite, names)
+    for case in cases:
+        t0 = time.perf_counter()
+        cert, fields = compute(case, progress=lambda s, n=case["name"]: log(f"suite: {n}: {s}"))
+        rel = f"fields/{case['name']}.csv"
+        cert["fields"]["file"] = rel
+        case["certified"] = cert
+        write_fields(DATA / rel, case, fields)
+        log(f"suite: {case['name']}: certified in {time.perf_counter() - t0:.1f} s "
+            f"(mu {cert['scalars']['mu']['digits']} digits)")
+    suite["rule"] = RULE
+    _atomic_write(suite_file, json.dumps(suite, indent=1, ensure_ascii=False) + "\n")
+
+
+# --------------------------------------------------------------------------- export
+def _prony_text(point) -> str:
+    if point.get("prony"):
+        return (DATA / point["prony"]).read_text(encoding="utf-8")
+    r = float(point.get("ratio", 3.0))
+    return ("# standard linear solid, E_inf/E0 = %r: J(t) = J0 - J1 exp(-t/tau)\n"
+            "# compliances in 1/E0, times in the creep time tau\n"
+            "J0 1.0\n%r 1.0\n" % (r, 1.0 - 1.0 / r))
+
+
+def _profile_text(point) -> str:
+    if point.get("profile"):
+        return (DATA / point["profile"]).read_text(encoding="utf-8")
+    hk = float(point.get("hk", 1.0))
+    m = 64  # the trigonometric interpolant of 64 samples is exactly hk cos(2 pi x)
+    lines = [f"# sinusoid k*y = {hk!r} cos(2 pi x/lambda), sampled at x/lambda = j/{m} - 1/2",
+             "x_over_lambda,ky"]
+    lines += [f"{j / m - 0.5!r},{hk * math.cos(2 * math.pi * (j / m - 0.5))!r}" for j in range(m)]
+    return "\n".join(lines) + "\n"
+
+
+def _inputs(case, suite) -> dict:
+    p = case["point"]
+    d = {"name": case["name"], "title": case["title"], "suite_version": suite["version"],
+         "control": "load" if p.get("load") is not None else "penetration"}
+    d.update(_control(p))
+    d["speed"] = float(p["speed"])
+    if p.get("profile"):
+        d["profile"] = {"kind": "samples (trigonometric interpolant)", "file": "profile.csv",
+                        "description": case.get("profile_description", "")}
+    else:
+        d["profile"] = {"kind": "sinusoid", "hk": float(p.get("hk", 1.0)), "file": "profile.csv"}
+    if p.get("prony"):
+        d["material"] = {"kind": "prony", "file": "prony.txt"}
+    else:
+        d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
+                         "file": "prony.txt"}
+    d["units"] = ("load = p (1 - nu^2)/E_ref; speed = V tau_ref k; lengths in wavelengths "
+                  "(x/lambda, crest at 0, sliding toward +x), heights k*y; compliances in "
+                  "1/E_ref, times in tau_ref (E_ref = E0, tau_ref = tau: the creep time)")
+    d["reference_road"] = ("semi-analytic (two roads agree)" if two_roads(p)
+                           else "BEM (convergence study)")
+    return d
+
+
+def _scalar_rows(cert):
+    rows = []
+    for k, r in cert["scalars"].items():
+        rows.append(["", k, r["value"], r["digits"], r["rounded"], r["error"], r["method"]])
+    for k, v in cert["exact"].items():
+        rows.append(["", k, v, "exact", "" if v is None else repr(v), 0.0, "exact"])
+    for j, p in enumerate(cert["patches"], 1):
+        for k in PATCH_KEYS:
+            r = p[k]
+            rows.append([j, k, r["value"], r["digits"], r["rounded"], r["error"], r["method"]])
+    return rows
+
+
+def export(folder, names=(), suite=None):
+    """Write the suite as plain CSV/JSON, one folder per case plus ``README.md`` and ``index.json``.
+
+    Returns the list of case folders written.
+    """
+    suite = suite or load_suite()
+    cases = select(suite, names)
+    folder = Path(folder)
+    written = []
+    for case in cases:
+        d = folder / case["name"]
+        cert = case["certified"]
+        _atomic_write(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
+                                                    ensure_ascii=False) + "\n")
+        _atomic_write(d / "prony.txt", _prony_text(case["point"]))
+        _atomic_write(d / "profile.csv", _profile_text(case["point"]))
+        sc = {"case": case["name"], "status": cert["status"], "notes": cert["notes"],
+              "method": cert["method"],
+              "scalars": {k: {kk: r[kk] for kk in ("value", "digits", "rounded", "error", "method")}
+                          for k, r in cert["scalars"].items()},
+              "exact": cert["exact"],
+              "patches": [{k: {kk: p[k][kk] for kk in ("value", "digits", "rounded", "error")}
+                           for k in PATCH_KEYS} for p in cert["patches"]],
+              "fields": {"file": "fields.csv", "grid": cert["fields"]["grid"],
+                         "max_error": cert["fields"]["max_error"]}}
+        _atomic_write(d / "scalars.json", json.dumps(sc, indent=1, ensure_ascii=False) + "\n")
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["patch", "quantity", "value", "certified_digits", "rounded", "error_bound",
+                    "method"])
+        for row in _scalar_rows(cert):
+            w.writerow(["" if v is None else (repr(v) if isinstance(v, float) else v) for v in row])
+        _atomic_write(d / "scalars.csv", buf.getvalue())
+        shutil.copyfile(DATA / cert["fields"]["file"], d / "fields.csv")
+        written.append(d)
+    index = {"suite_version": suite["version"], "description": suite["description"],
+             "rule": suite["rule"], "cases": [c["name"] for c in cases]}
+    _atomic_write(folder / "index.json", json.dumps(index, indent=1, ensure_ascii=False) + "\n")
+    _atomic_write(folder / "README.md", _index_readme(suite, cases))
+    return written
+
+
+def summary_rows(cases):
+    """(case, title, μ digits, Δ/h or load digits, how) for each case."""
+    rows = []
+    for c in cases:
+        cert = c["certified"]
+        sc = cert["scalars"]
+        if "penetration" in sc:
+            second = str(sc["penetration"]["digits"])
+        elif "load" in sc:  # penetration control: Δ/h is the input, the load is certified
+            second = f"input ({sc['load']['digits']} in the load)"
+        else:
+            second = "exact (full contact)"
+        rows.append([c["name"], c["title"], str(sc["mu"]["digits"]), second,
+                     cert["method"] + ("" if cert["status"] == "complete"
+                                       else f" — {cert['status']}")])
+    return rows
+
+
+def _index_readme(suite, cases) -> str:
+    from ._html import table
+    out = [f"# viscosine benchmark suite, version {suite['version']}", "",
+           suite["description"], "",
+           "Each folder is one case:", "",
+           "- `inputs.json`: the operating point (load or penetration control, speed) and what "
+           "the indenter and the material are, in the units stated there;",
+           "- `profile.csv`: the indenter, k·y at x/λ = j/M − 1/2 (columns `x_over_lambda,ky`; "
+           "the profile is the trigonometric interpolant of the samples);",
+           "- `prony.txt`: the creep function, a line `J0 value` then one line `J_i tau_i` per "
+           "term, J(t) = J0 − Σ J_i exp(−t/τ_i), compliances in 1/E_ref, retardation (creep) "
+           "times in τ_ref;",
+           "- `scalars.json` and `scalars.csv`: every certified value with its certified "
+           "significant digits, the value rounded to them, and the error bound behind them;",
+           "- `fields.csv`: pressure, displacement and gap on a stated grid, each with its "
+           "certified absolute error (`<column>_err`).", "",
+           "Units and signs: pressure σ(1 − ν²)/E0 (positive in compression), displacement v/h "
+           "(positive into the body, from the mean line of the deformed surface), gap/h; "
+           "x/λ with the crest at 0 and the indenter sliding toward +x; μ = τf/p∞ with τf "
+           "positive when it resists; ka, ke, kê in radians (per patch measured from the "
+           "patch's summit).", "",
+           "## How the digits are certified", "", suite["rule"], "",
+           "## Cases", "",
+           table(["case", "title", "μ digits", "Δ/h digits", "certified by"], summary_rows(cases)),
+           "Cite: Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the "
+           "problem and the semi-analytic method).", ""]
+    return "\n".join(out)
+
+
+# --------------------------------------------------------------------------- command line
+def add_parser(sub):
+    """Register ``suite`` on the subparsers ``sub`` of the command line."""
+    p = sub.add_parser("suite", help="the certified benchmark suite: export it or check it")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--export", metavar="DIR", default=None,
+                   help="write the suite as plain CSV/JSON into DIR (one folder per case)")
+    g.add_argument("--check", action="store_true",
+                   help="recompute every value; exit 1 if a certified digit changed")
+    g.add_argument("--certify", action="store_true",
+                   help="maintainers: recompute and rewrite the shipped certification")
+    g.add_argument("--list", action="store_true", help="print the cases and their digits")
+    p.add_argument("--cases", nargs="+", metavar="NAME", default=[],
+                   help="restrict to these cases")
+    p.add_argument("--out", metavar="DIR", default=None,
+                   help="--check: write each recomputed case here as it is done")
+    p.add_argument("--resume", action="store_true",
+                   help="--check: reuse the cases already recomputed in --out")
+    p.add_argument("--workers", type=int, default=1, help="--check: processes (default 1)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="--check: a Dask distributed scheduler to run the cases on")
+    return p
+
+
+def main(args) -> int:
+    """Run ``suite`` from parsed arguments; exit status 0, 1 (a digit changed) or 2 (bad input)."""
+    try:
+        if args.resume and not args.out:
+            raise SuiteError("--resume needs --out DIR (where the recomputed cases are)")
+        if args.workers < 1:
+            raise SuiteError(f"--workers {args.workers} is not allowed: an integer >= 1")
+        suite = load_suite()
+        cases = select(suite, args.cases)
+        if args.list:
+            from ._html import table
+            print(table(["case", "title", "μ digits", "Δ/h digits", "certified by"],
+                        summary_rows(cases)), end="")
+            return 0
+        if args.export:
+            dirs = export(args.export, args.cases, suite)
+            print(f"suite: wrote {len(dirs)} cases and README.md to {args.export}",
+                  file=sys.stderr)
+            return 0
+        if args.certify:
+            certify(args.cases)
+            return 0
+        res = check(args.cases, out=args.out, resume=args.resume, workers=args.workers,
+                    scheduler=args.scheduler, suite=suite)
+    except SuiteError as exc:
+        print(str(exc).splitlines()[0], file=sys.stderr)
+        return 2
+    for r in res["cases"]:
+        if r["changed"]:
+            print(f"{r['name']}: CHANGED")
+            for line in r["changed"]:
+                print(f"  {line}")
+        else:
+            print(f"{r['name']}: ok" + (f" ({r['status']}: {'; '.join(r['notes'])[:300]})"
+                                        if r["status"] != "complete" else ""))
+        for line in r["raised"]:
+            print(f"  can be raised: {line} (run suite --certify --cases {r['name']})")
+    n_bad = sum(bool(r["changed"]) for r in res["cases"])
+    print(f"suite: {len(res['cases'])} cases checked in {res['seconds']:.0f} s, "
+          f"{n_bad} with changed certified digits", file=sys.stderr)
+    return 0 if res["ok"] else 1
