@@ -98,8 +98,9 @@ def build_parser():
                    help="largest BEM mesh 2^n of the BEM speed/memory benchmark (default 20)")
     p = sub.add_parser("crosscheck", help="BEM − semi-analytic differences on the grid of operating points")
     p.add_argument("--nodes", type=_int("nodes"), nargs="+", default=[1024, 4096, 16384, 65536])
-    from . import suite  # the benchmark suite registers its own options
+    from . import suite, verify  # the benchmark suite and verify register their own options
     suite.add_parser(sub)
+    verify.add_parser(sub)
     return parser
 
 
@@ -184,9 +185,9 @@ def main(argv=None):
         if args.command == "crosscheck":
             from . import crosscheck
             return crosscheck.print_table(args.nodes)
-        if args.command == "suite":
-            from . import suite
-            return suite.main(args)
+        if args.command in ("suite", "verify"):
+            from . import suite, verify
+            return {"suite": suite, "verify": verify}[args.command].main(args)
     except BadInput as exc:
         print(str(exc).splitlines()[0], file=sys.stderr)
         return EXIT_BAD_INPUT

@@ -1,0 +1,1400 @@
+"""`python -m comparisons verify`: another code's results in, a verdict and a report out.
+
+    python -m comparisons verify (--case NAME | (--load P | --penetration D) --speed S
+                                  [--ratio R] [--hk H] [--profile F] [--prony F])
+                                 (--fields F.csv [F.csv ...] | --scalars F.jsonl |
+                                  --callable MODULE:FUNCTION [--nodes N ...] |
+                                  --peer tamaas [--nodes N ...] [--dt T])
+                                 [--rtol R] [--tol NAME=VALUE ...] [--units SI --E0 ... ]
+                                 [--out DIR] [--label TEXT] [--no-figures]
+
+Inputs
+------
+- Fields CSV (``--fields``): a header line with the columns ``x_over_lambda, pressure`` and
+  optionally ``displacement, gap`` (any order, other columns ignored), ``#`` comment lines allowed
+  before it, one row per point of a uniform grid over one period (any offset, increasing x, the
+  end point not repeated).  Units of the conventions (pressure σ(1 − ν²)/E0, displacement v/h,
+  gap/h), or SI with ``--units SI`` (Pa, m, m) and ``--E0 --nu --amplitude`` to convert them.
+  Several files are results at several resolutions (N = the number of rows).
+- Scalars (``--scalars``): JSON lines, one object per result, keyed like the conventions (``mu``,
+  ``tau_f``, ``penetration``, ``separation``, ``load``, ``contact_fraction``, ``ka``, ``ke``,
+  ``ke_hat``; conventions units), with ``nodes`` when there are several.
+- A callable (``--callable module:function`` or ``path/to/file.py:function``): called as
+  ``function(point, nodes)`` for each ``--nodes`` with ``point`` the operating point (a dict:
+  ``load`` or ``penetration``, ``speed``, and ``ratio``/``hk`` or absolute ``prony``/``profile``
+  file paths); it returns a :class:`viscosine.Fields`, a dict of arrays keyed like the CSV
+  columns, or an object with ``.fields`` (and optionally ``.scalars``, a dict).
+  :func:`viscosine_bem` is such a callable (viscosine's own BEM).
+- ``--peer tamaas``: :mod:`comparisons.peers.tamaas` (imported only when asked for).
+
+Scalars from fields (documented, deterministic)
+-----------------------------------------------
+On the user's grid x_j (spacing 1/M):
+
+- load p̃∞ = mean σ_j (rectangle rule, exact for a trigonometric polynomial);
+- τ̃f = −(1/2π) mean σ_j (ky)′(x_j): eq. (3.1), τf = −(1/λ)∫σ ∂v/∂x dx, with ∂v/∂x = ∂y/∂x on
+  the contact (the only place where σ ≠ 0) and the profile's exact slope; μ = τ̃f/p̃∞;
+- s/h = mean gap_j when the gap is given, else the mean over the contact points of
+  y/h − v_j (in contact gap = v − y + s = 0); Δ/h = 1 − s/h;
+- contact points: σ_j > 1e-9 max σ; patches are the cyclic runs of contact points;
+- each edge: the zero of a least-squares polynomial (cubic when there are enough points) through
+  σ² at the contact points and, when the gap is given, through gap^(2/3) at the free points, taken
+  between ~√M/16 and ~√M/2 points from the edge (σ ∝ d^½ and gap ∝ d^(3/2) near an edge, so both
+  are analytic with a simple zero there; the points right at the edge carry the largest
+  discretisation error); the two zeros are averaged; with too few points, σ² is extrapolated
+  linearly from the last two contact points;
+- per patch: ka = π·width, ke = 2π(centre − summit), kê = 2π(centroid − summit) with the centroid
+  Σσ_j x_j/Σσ_j over the patch and the summit the highest profile point inside it (the crest 0 for
+  the sinusoid); with several patches the top-level ka, ke, kê are not defined;
+- full contact (every point in contact): ka = π, ke undefined, kê the phase by which the pressure
+  leads the profile in the profile's dominant mode n: arg(ŷ_n/σ̂_n)/n.
+
+Verdicts
+--------
+Each quantity is compared with the reference: relative difference for μ, τf, Δ/h, s/h, the load
+and the contact fraction; absolute for ka, ke, kê (radians) and the contact edges (x/λ);
+field norms over the user's grid: ``pressure_L2``, ``pressure_Linf`` (of σ − σ_ref, over
+max |σ_ref|) and ``displacement_L2``, ``displacement_Linf``, ``gap_Linf`` (of v/h, gap/h).  The
+tolerance is ``--rtol`` (default 1e-4) for every quantity unless ``--tol NAME=VALUE`` sets it; a
+quantity passes when its difference is at most its tolerance.  The reference is the semi-analytic
+road where it applies (sinusoid on the standard linear solid), else the BEM (the suite's certified
+values for ``--case``, else a convergence study as the suite's; its fields on the user's grid at
+N = M·2^k ≥ 2^16); the report says which, and the reference's own uncertainty.
+
+Several resolutions give the solver's convergence study: per quantity the order of its error
+against the reference (least-squares slope over N), the self-convergence order and Richardson
+value (:func:`comparisons.suite.study`), and the error of the Richardson value.
+
+Output: ``DIR/report.md``, ``DIR/report.html`` (offline, images embedded), ``DIR/verdict.json``
+and the figures; exit status 0 when every tolerance holds, 1 otherwise, 2 for bad input (one line
+on standard error naming the option, the value and what is allowed).
+
+References
+----------
+Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (eq. 3.1 for the
+friction; the problem and the semi-analytic road).
+"""
+from __future__ import annotations
+
+import datetime
+import hashlib
+import importlib
+import importlib.util
+import json
+import math
+import os
+import platform
+import sys
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from . import suite as _suite
+
+REL = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction")
+ABS = ("ka", "ke", "ke_hat")
+SCALAR_KEYS = REL + ABS
+NORM_KEYS = ("pressure_L2", "pressure_Linf", "displacement_L2", "displacement_Linf", "gap_Linf",
+             "edges")
+ALL_KEYS = SCALAR_KEYS + NORM_KEYS
+LABELS = {"mu": "μ", "tau_f": "τ̃f", "penetration": "Δ/h", "separation": "s/h",
+          "load": "p̃∞", "contact_fraction": "2a/λ", "ka": "ka", "ke": "ke", "ke_hat": "kê",
+          "pressure_L2": "σ L2 / max σ", "pressure_Linf": "σ L∞ / max σ",
+          "displacement_L2": "v L2 / h", "displacement_Linf": "v L∞ / h",
+          "gap_Linf": "gap L∞ / h", "edges": "contact edges (x/λ)"}
+DEFAULT_RTOL = 1e-4
+DEFAULT_NODES = (1024, 2048, 4096, 8192)
+CONTACT = 1e-9          # contact points: σ > CONTACT · max σ
+MIN_POINTS = 8
+REFERENCE_MIN_NODES = 1 << 16
+
+
+class BadInput(ValueError):
+    """Bad input to verify: one line naming the option, the value and what is allowed."""
+
+
+def _bad(option, value, problem, allowed=None):
+    text = f"{option}: {problem}" if value is None else f"{option} {value}: {problem}"
+    if allowed:
+        text += f"; allowed: {allowed}"
+    return BadInput(text)
+
+
+# =========================================================================== reading inputs
+FIELDS_ALLOWED = ("a UTF-8 CSV file, '#' comment lines, a header with x_over_lambda,pressure "
+                  "[,displacement,gap], then one row per point of a uniform grid over one period")
+
+
+def _text(path, option, allowed):
+    """The text of a file, or BadInput naming the option and the file (missing, empty, binary,
+    not UTF-8)."""
+    p = Path(path)
+    if not p.exists():
+        raise _bad(option, path, "no such file", allowed)
+    if p.is_dir():
+        raise _bad(option, path, "is a directory, not a file", allowed)
+    try:
+        raw = p.read_bytes()
+    except OSError as exc:
+        raise _bad(option, path, f"cannot be read ({exc.strerror})", allowed) from None
+    if not raw.strip():
+        raise _bad(option, path, "the file is empty", allowed)
+    if b"\0" in raw:
+        raise _bad(option, path, "a binary file, not text", allowed)
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise _bad(option, path, f"not UTF-8 text (byte {exc.start})", allowed) from None
+
+
+def parse_fields_csv(text, option="--fields", name="<text>") -> dict:
+    """The columns of a fields CSV (see the module docstring) as float arrays, checked.
+
+    Returns
+    -------
+    dict
+        ``x_over_lambda``, ``pressure`` and, when present, ``displacement`` and ``gap``.
+
+    Raises
+    ------
+    BadInput
+        Missing columns, non-numeric values, fewer than 8 rows, a grid that is not uniform over
+        one period.
+    """
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if not lines:
+        raise _bad(option, name, "no header line (only comments)", FIELDS_ALLOWED)
+    head = [h.strip().lower() for h in lines[0].split(",")]
+    if "x_over_lambda" not in head or "pressure" not in head:
+        raise _bad(option, name, f"the columns x_over_lambda and pressure are required "
+                   f"(found: {', '.join(head)})", FIELDS_ALLOWED)
+    cols = {c: head.index(c) for c in ("x_over_lambda", "pressure", "displacement", "gap")
+            if c in head}
+    rows = []
+    for i, ln in enumerate(lines[1:], 2):
+        cells = [c.strip() for c in ln.split(",")]
+        if len(cells) < len(head):
+            raise _bad(option, name, f"row {i - 1} has {len(cells)} fields, the header "
+                       f"{len(head)}", FIELDS_ALLOWED)
+        try:
+            rows.append([float(cells[j]) for j in cols.values()])
+        except ValueError:
+            raise _bad(option, name, f"row {i - 1}: not a number in {ln.strip()[:60]!r}",
+                       FIELDS_ALLOWED) from None
+    data = np.array(rows, dtype=float).reshape(-1, len(cols))
+    if data.shape[0] < MIN_POINTS:
+        raise _bad(option, name, f"{data.shape[0]} rows", f"at least {MIN_POINTS} points")
+    if not np.all(np.isfinite(data)):
+        raise _bad(option, name, "non-finite values (nan or inf)", "finite numbers")
+    out = {c: data[:, k] for k, c in enumerate(cols)}
+    check_grid(out["x_over_lambda"], option, name)
+    return out
+
+
+def check_grid(x, option="--fields", name="<fields>"):
+    """BadInput unless x is increasing and uniform over exactly one period (end not repeated)."""
+    x = np.asarray(x, float)
+    m = x.size
+    dx = np.diff(x)
+    spread = float(np.max(np.abs(dx * m - 1.0))) if m > 1 else math.inf
+    if abs(x[-1] - x[0] - 1.0) < 1e-9:
+        raise _bad(option, name, "the end point of the period is repeated",
+                   "one period, x_last = x_first + 1 − 1/M (drop the last row)")
+    if not spread < 1e-6:
+        raise _bad(option, name, f"x_over_lambda is not a uniform grid over one period "
+                   f"(spacing × M − 1 reaches {spread:.2e})",
+                   "x_j = x_0 + j/M, j = 0..M−1, increasing")
+
+
+def read_fields_csv(path, option="--fields") -> dict:
+    """Read and check one fields CSV file (BadInput on anything the module docstring excludes)."""
+    return parse_fields_csv(_text(path, option, FIELDS_ALLOWED), option, str(path))
+
+
+SCALARS_ALLOWED = ("a UTF-8 file of JSON objects, one per line, keyed like the conventions "
+                   "(mu, tau_f, penetration, ka, ...), with 'nodes' when there are several")
+
+
+def read_scalars_jsonl(path, option="--scalars") -> list[dict]:
+    """The results of a JSON-lines file of scalars, each a dict (``nodes`` kept when given)."""
+    text = _text(path, option, SCALARS_ALLOWED)
+    out = []
+    for i, ln in enumerate(text.splitlines(), 1):
+        if not ln.strip() or ln.lstrip().startswith("#"):
+            continue
+        try:
+            obj = json.loads(ln)
+        except ValueError as exc:
+            raise _bad(option, path, f"line {i} is not JSON ({exc.msg})", SCALARS_ALLOWED) from None
+        if not isinstance(obj, dict):
+            raise _bad(option, path, f"line {i} is not a JSON object", SCALARS_ALLOWED)
+        rec = {}
+        for k in SCALAR_KEYS:
+            v = obj.get(k)
+            if v is None:
+                continue
+            if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+                raise _bad(option, path, f"line {i}: {k} = {v!r} is not a finite number",
+                           SCALARS_ALLOWED)
+            rec[k] = float(v)
+        if not rec:
+            raise _bad(option, path, f"line {i} has none of the keys {', '.join(SCALAR_KEYS)}",
+                       SCALARS_ALLOWED)
+        nodes = obj.get("nodes")
+        if nodes is not None and (isinstance(nodes, bool) or not isinstance(nodes, int)
+                                  or nodes < 1):
+            raise _bad(option, path, f"line {i}: nodes = {nodes!r}", "a positive integer")
+        out.append({"nodes": nodes, "scalars": rec})
+    if not out:
+        raise _bad(option, path, "no JSON object in the file", SCALARS_ALLOWED)
+    if len(out) > 1 and any(r["nodes"] is None for r in out):
+        raise _bad(option, path, f"{len(out)} results without 'nodes'",
+                   "one result, or a 'nodes' key on every line (a convergence study)")
+    if len({r["nodes"] for r in out}) != len(out):
+        raise _bad(option, path, "two results with the same 'nodes'", "one result per resolution")
+    return out
+
+
+def load_callable(spec, option="--callable"):
+    """The function named by ``module:function`` or ``path/to/file.py:function``."""
+    allowed = "module:function or path/to/file.py:function, importable, the function callable"
+    if not isinstance(spec, str) or spec.count(":") < 1:
+        raise _bad(option, spec, "not of the form module:function", allowed)
+    mod_name, func_name = spec.rsplit(":", 1)
+    try:
+        if mod_name.endswith(".py"):
+            if not Path(mod_name).exists():
+                raise _bad(option, spec, f"no such file {mod_name}", allowed)
+            sp = importlib.util.spec_from_file_location(Path(mod_name).stem, mod_name)
+            mod = importlib.util.module_from_spec(sp)
+            sp.loader.exec_module(mod)
+        else:
+            mod = importlib.import_module(mod_name)
+    except BadInput:
+        raise
+    except Exception as exc:  # any import failure is bad input, reported in one line
+        raise _bad(option, spec, f"cannot import {mod_name} ({type(exc).__name__}: {exc})",
+                   allowed) from None
+    fn = getattr(mod, func_name, None)
+    if not callable(fn):
+        raise _bad(option, spec, f"{mod_name} has no callable {func_name}", allowed)
+    return fn
+
+
+# =========================================================================== operating point
+def point_from_case(name):
+    """(operating point with absolute file paths, suite case) of a suite case."""
+    try:
+        case = _suite.get_case(name)
+    except _suite.SuiteError:
+        raise _bad("--case", name, "not a suite case",
+                   ", ".join(_suite.case_names())) from None
+    point = dict(case["point"])
+    for k in ("profile", "prony"):
+        if point.get(k):
+            point[k] = str(_suite.data_path(point[k]))
+    return point, case
+
+
+def check_point(point, option_prefix="--"):
+    """BadInput unless the operating point dict is valid (ranges as the two roads accept)."""
+    def num(name, test, allowed):
+        v = point.get(name)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or not test(v):
+            raise _bad(option_prefix + name, v, "out of range", allowed)
+        return float(v)
+    if (point.get("load") is None) == (point.get("penetration") is None):
+        raise _bad(option_prefix + "load", point.get("load"),
+                   "give exactly one of --load and --penetration", "one of them")
+    if point.get("load") is not None:
+        num("load", lambda v: v > 0.0, "a mean pressure p̃∞ > 0")
+    else:
+        num("penetration", lambda v: 0.0 < v <= 1.0, "Δ/h in (0, 1]")
+    num("speed", lambda v: v >= 0.0, "V/V0 ≥ 0")
+    if point.get("prony"):
+        if point.get("ratio") is not None:
+            raise _bad("--ratio", point["ratio"], "given with --prony", "one of --ratio and --prony")
+    else:
+        num("ratio", lambda v: v > 1.0, "E∞/E0 > 1")
+    if point.get("profile"):
+        if point.get("hk") is not None:
+            raise _bad("--hk", point["hk"], "given with --profile", "one of --hk and --profile")
+    else:
+        num("hk", lambda v: v > 0.0, "hk > 0")
+    import bem
+    for k, reader in (("profile", bem.read_profile), ("prony", bem.read_prony)):
+        if point.get(k):
+            path = point[k]
+            _text(path, "--" + k, f"a {k} file (see bem.read_{k})")
+            try:
+                reader(path)
+            except ValueError as exc:
+                raise _bad("--" + k, path, str(exc).split(": ", 1)[-1],
+                           f"the format of bem.read_{k}") from None
+    return point
+
+
+# =========================================================================== scalars from fields
+def _runs(mask):
+    """Cyclic runs of True as (first index, length)."""
+    n = mask.size
+    if mask.all():
+        return [(0, n)]
+    if not mask.any():
+        return []
+    start = int(np.flatnonzero(~mask)[0])
+    rolled = np.roll(mask, -start).astype(np.int8)
+    d = np.diff(np.concatenate(([0], rolled, [0])))
+    return [((int(f) + start) % n, int(l - f))
+            for f, l in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
+
+
+def _zero(pos, vals):
+    """Zero nearest 0 of a least-squares polynomial through (pos, vals) (None if none real)."""
+    k = vals.size
+    deg = 3 if k >= 6 else (2 if k >= 4 else 1)
+    scale = float(np.max(np.abs(pos)))
+    c = np.polynomial.polynomial.polyfit(pos / scale, vals, deg)
+    r = np.polynomial.polynomial.polyroots(c)
+    r = r[np.abs(r.imag) < 1e-9].real * scale
+    return float(r[np.argmin(np.abs(r))]) if r.size else None
+
+
+def _edge_offset(inside_sq, outside_23, h, m_total):
+    """Offset of an edge beyond its last contact point (see the module docstring).
+
+    ``inside_sq[m]``: σ² at the m-th contact point counted inward (offset −m h);
+    ``outside_23[m]``: gap^(2/3) at the m-th free point outward (offset (m + 1) h), or empty.
+    """
+    m1 = max(1, int(round(math.sqrt(m_total) / 16.0)))
+    m2 = max(m1 + 6, int(round(math.sqrt(m_total) / 2.0)))
+    est = []
+    for vals, sign, shift in ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0)):
+        lo, hi = m1, min(m2, vals.size - 1)
+        if hi - lo < 5:
+            lo, hi = 0, min(m2, vals.size - 1)
+        if hi - lo < 3:
+            continue
+        m = np.arange(lo, hi + 1)
+        z = _zero(sign * (m + shift) * h, vals[m])
+        if z is not None and -h <= z <= 2.0 * h:
+            est.append(z)
+    if est:
+        return min(max(sum(est) / len(est), -0.5 * h), 1.5 * h)
+    if inside_sq.size >= 2 and inside_sq[1] > inside_sq[0]:
+        return min(h, h * inside_sq[0] / (inside_sq[1] - inside_sq[0]))
+    return 0.5 * h
+
+
+def scalars_from_fields(fields, shape):
+    """Scalars and contact patches computed from fields on a uniform periodic grid.
+
+    Parameters
+    ----------
+    fields : dict
+        ``x_over_lambda``, ``pressure`` and optionally ``displacement``, ``gap`` (conventions
+        units; x uniform over one period, increasing).
+    shape : comparisons.suite.ProfileShape
+        The indenter (k·y and its slope anywhere).
+
+    Returns
+    -------
+    (dict, list of dict)
+        The scalars (keys of SCALAR_KEYS plus ``full_contact``; a key is absent when the fields
+        cannot give it) and the patches (``trailing_edge``, ``leading_edge``, ``load``,
+        ``centroid``, ``summit``, ``ka``, ``ke``, ``ke_hat``).  The method is in the module
+        docstring.
+    """
+    x = np.asarray(fields["x_over_lambda"], float)
+    p = np.asarray(fields["pressure"], float)
+    v = fields.get("displacement")
+    g = fields.get("gap")
+    m = x.size
+    h = 1.0 / m
+    pmax = float(np.max(p))
+    out = {}
+    load = float(np.mean(p))
+    out["load"] = load
+    tau = -float(np.mean(p * shape(x, 1))) / (2.0 * math.pi)
+    out["tau_f"] = tau
+    if load != 0.0:
+        out["mu"] = tau / load
+    contact = p > CONTACT * pmax if pmax > 0.0 else np.zeros(m, bool)
+    hk = shape.amplitude
+    if g is not None:
+        sep = float(np.mean(g))
+    elif v is not None and contact.any():
+        sep = float(np.mean((shape(x) / hk - np.asarray(v, float))[contact]))
+    else:
+        sep = None
+    if sep is not None:
+        out["separation"] = sep
+        out["penetration"] = 1.0 - sep
+    full = bool(contact.all())
+    out["full_contact"] = full
+    patches = []
+    if full:
+        out.update(ka=math.pi, contact_fraction=1.0)
+        yh = np.fft.rfft(shape(x))
+        sh = np.fft.rfft(p)
+        n = int(np.argmax(np.abs(yh[1:]))) + 1
+        out["ke_hat"] = float(np.angle(yh[n] / sh[n])) / n
+        return out, patches
+    runs = _runs(contact)
+    for i, (first, length) in enumerate(runs):
+        nxt = runs[(i + 1) % len(runs)][0]
+        prv_first, prv_len = runs[i - 1]
+        free_after = (nxt - (first + length)) % m
+        free_before = (first - (prv_first + prv_len)) % m
+        if len(runs) == 1:
+            free_after = free_before = m - length
+        half = (length - 1) // 2 + 1
+        last = first + length - 1
+        ins_lead = p[(last - np.arange(half)) % m] ** 2
+        ins_trail = p[(first + np.arange(half)) % m] ** 2
+        if g is not None:
+            ga = np.abs(np.asarray(g, float))
+            out_lead = ga[(last + 1 + np.arange(free_after // 2)) % m] ** (2.0 / 3.0)
+            out_trail = ga[(first - 1 - np.arange(free_before // 2)) % m] ** (2.0 / 3.0)
+        else:
+            out_lead = out_trail = np.zeros(0)
+        x_first = x[first]
+        x_last = x_first + (length - 1) * h  # unwrapped across the end of the period
+        lead = x_last + _edge_offset(ins_lead, out_lead, h, m)
+        trail = x_first - _edge_offset(ins_trail, out_trail, h, m)
+        ids = (first + np.arange(length)) % m
+        xs = x_first + h * np.arange(length)
+        w = p[ids]
+        centroid = float(np.dot(w, xs) / w.sum()) if w.sum() > 0 else 0.5 * (trail + lead)
+        summit = shape.summit(trail, lead)
+        shift = -math.floor(0.5 * (trail + lead) - summit + 0.5)
+        patches.append({"trailing_edge": trail + shift, "leading_edge": lead + shift,
+                        "load": float(w.sum()) / m, "centroid": centroid + shift,
+                        "summit": summit, "ka": math.pi * (lead - trail),
+                        "ke": math.pi * (trail + lead) - 2.0 * math.pi * summit,
+                        "ke_hat": 2.0 * math.pi * (centroid - summit)})
+    patches.sort(key=lambda r: _suite._wrap(0.5 * (r["trailing_edge"] + r["leading_edge"])))
+    out["contact_fraction"] = float(sum(r["leading_edge"] - r["trailing_edge"] for r in patches))
+    if len(patches) == 1:
+        out.update(ka=patches[0]["ka"], ke=patches[0]["ke"], ke_hat=patches[0]["ke_hat"])
+    return out, patches
+
+
+# =========================================================================== the reference
+@dataclass
+class Reference:
+    """The reference of a verification: scalars, patches and fields on any grid.
+
+    ``road`` is ``"semi-analytic"`` or ``"BEM"``; ``scalars[key]`` = (value, uncertainty) with an
+    absolute uncertainty; ``patches`` a list of dicts with ``trailing_edge``, ``leading_edge``.
+    """
+
+    road: str
+    description: str
+    point: dict
+    scalars: dict
+    patches: list
+    full_contact: bool | None
+    shape: object
+    _analytic: object = None
+    _bem_cache: dict = field(default_factory=dict)
+
+    def fields(self, x):
+        """(reference fields at x, their absolute uncertainty per column) as dicts of arrays."""
+        x = np.asarray(x, float)
+        if self._analytic is not None:
+            f = self._analytic.fields(x)
+            vals = {"pressure": np.asarray(f.pressure), "displacement": np.asarray(f.displacement),
+                    "gap": np.asarray(f.gap)}
+            unc = {k: np.full(x.size, 1e-12 * max(1.0, float(np.max(np.abs(a)))))
+                   for k, a in vals.items()}
+            return vals, unc
+        m = x.size
+        n_ref = m * 2
+        while n_ref < REFERENCE_MIN_NODES:
+            n_ref *= 2
+        fine = self._bem_on(x, n_ref)
+        coarse = self._bem_on(x, n_ref // 2)
+        unc = {k: np.abs(fine[k] - coarse[k]) for k in fine}
+        return fine, unc
+
+    def _bem_on(self, x, n):
+        if n not in self._bem_cache:
+            res = _suite.bem_solution(self.point, n, base="/")
+            if not res.success:
+                raise RuntimeError(f"the reference BEM did not converge at N = {n}: "
+                                   f"{res.message.splitlines()[0][:200]}")
+            self._bem_cache[n] = _suite.bem_fields(res)
+        X, p, v, g = self._bem_cache[n]
+        # aligned grid points are panel centres; others are interpolated (σ² and gap^(2/3)
+        # are the quantities that are smooth through an edge)
+        pos = (np.asarray(x, float) + 0.5) * n
+        idx = np.rint(pos)
+        if np.all(np.abs(pos - idx) < 1e-6):
+            j = idx.astype(np.int64) % n
+            return {"pressure": p[j], "displacement": v[j], "gap": g[j]}
+        xe = np.concatenate((X - 1.0, X, X + 1.0))
+        xw = np.asarray(x, float) - np.floor(np.asarray(x, float) + 0.5)
+
+        def lin(a):
+            return np.interp(xw, xe, np.tile(a, 3))
+        return {"pressure": np.sqrt(lin(p ** 2)), "displacement": lin(v),
+                "gap": lin(np.abs(g) ** (2.0 / 3.0)) ** 1.5}
+
+
+def reference_for(point, case=None) -> Reference:
+    """The reference for an operating point: the semi-analytic road where it applies, else the
+    suite's certified BEM values (``case``) or a BEM convergence study as the suite's."""
+    shape = _suite.ProfileShape(point, base="/")
+    if _suite.two_roads(point):
+        sol = _suite.analytic_solution(point)
+        if not sol.success:
+            raise RuntimeError(f"the semi-analytic reference failed: {sol.message}")
+        sc = {}
+        for k in SCALAR_KEYS:
+            v = getattr(sol, k, None)
+            if v is not None:
+                sc[k] = (float(v), 1e-12 * abs(float(v)))
+        if case is not None:  # the certified values carry the two roads' agreement
+            for k, r in case["certified"]["scalars"].items():
+                if r["value"] is not None and r["error"] is not None:
+                    sc[k] = (float(r["value"]), float(r["error"]))
+        patches = []
+        if not sol.full_contact:
+            patches = [{"trailing_edge": (sol.ke - sol.ka) / (2 * math.pi),
+                        "leading_edge": (sol.ke + sol.ka) / (2 * math.pi)}]
+        desc = ("the semi-analytic road (analytic/: Hunter's transformation, the closure "
+                "(2.14)–(2.15), Appendix B in full contact)"
+                + (f"; scalars as certified in the suite case {case['name']}" if case else ""))
+        return Reference("semi-analytic", desc, point, sc, patches, bool(sol.full_contact),
+                         shape, _analytic=sol)
+    if case is None:
+        nodes = [2 ** k for k in range(10, 19)]
+        case = {"name": "reference", "title": "reference", "point": point, "nodes": nodes}
+        cert, _ = _suite.compute(case, base="/")
+        case = dict(case, certified=cert)
+        desc = ("the BEM (bem/), a convergence study over N = 2^10 … 2^18 as the suite's "
+                "(Richardson values; uncertainty 10 × the estimate)")
+    else:
+        desc = f"the BEM (bem/): the certified values of the suite case {case['name']}"
+    cert = case["certified"]
+    sc = {k: (float(r["value"]), float(r["error"]) if r["error"] is not None else math.inf)
+          for k, r in cert["scalars"].items() if r["value"] is not None}
+    full = bool(cert["exact"].get("full_contact"))
+    for k in ("ka", "contact_fraction", "penetration", "separation"):
+        if k in cert["exact"] and cert["exact"][k] is not None and k not in sc:
+            sc[k] = (float(cert["exact"][k]), 0.0)
+    if cert["patches"]:
+        patches = [{"trailing_edge": p["trailing_edge"]["value"],
+                    "leading_edge": p["leading_edge"]["value"]} for p in cert["patches"]]
+    elif not full and "ka" in sc:
+        s0 = shape.summit(-0.5, 0.5) if not shape.sinusoid else 0.0
+        ka, ke = sc["ka"][0], sc["ke"][0]
+        patches = [{"trailing_edge": s0 + (ke - ka) / (2 * math.pi),
+                    "leading_edge": s0 + (ke + ka) / (2 * math.pi)}]
+    else:
+        patches = []
+    return Reference("BEM", desc, point, sc, patches, full, shape)
+
+
+# =========================================================================== the solver's results
+@dataclass
+class Result:
+    """One result of the solver under test: its resolution, fields (dict or None) and scalars."""
+
+    nodes: int | None
+    fields: dict | None
+    scalars: dict
+    patches: list
+    source: str   # "fields" or "solver"
+
+
+def _as_fields(obj, option, label):
+    """A dict of arrays from a Fields, a dict, or an object with .fields."""
+    f = getattr(obj, "fields", obj)
+    if callable(f) and not isinstance(f, dict):
+        f = f()
+    if isinstance(f, dict):
+        d = {k: np.asarray(v, float) for k, v in f.items() if v is not None}
+    else:
+        d = {}
+        for k in ("x_over_lambda", "pressure", "displacement", "gap"):
+            v = getattr(f, k, None)
+            if v is not None:
+                d[k] = np.asarray(v, float)
+    if "x_over_lambda" not in d or "pressure" not in d:
+        raise _bad(option, label, "returned no x_over_lambda and pressure",
+                   "a viscosine.Fields, a dict of arrays or an object with .fields")
+    n = d["x_over_lambda"].size
+    if any(a.shape != (n,) for a in d.values()) or n < MIN_POINTS:
+        raise _bad(option, label, "returned columns of different lengths or too few points",
+                   f"1-D arrays of one length >= {MIN_POINTS}")
+    check_grid(d["x_over_lambda"], option, label)
+    return d
+
+
+def results_from_fields(fields_list, shape, nodes=None, solver_scalars=None):
+    out = []
+    for i, f in enumerate(fields_list):
+        sc, patches = scalars_from_fields(f, shape)
+        source = "fields"
+        if solver_scalars and solver_scalars[i]:
+            sc = {**sc, **{k: float(v) for k, v in solver_scalars[i].items()
+                           if k in SCALAR_KEYS and v is not None}}
+            source = "solver (fields for the rest)"
+        out.append(Result(nodes[i] if nodes else f["x_over_lambda"].size, f, sc, patches, source))
+    return out
+
+
+def to_conventions(fields, E0, nu, amplitude):
+    """SI fields (Pa, m, m) in the conventions' units (σ(1 − ν²)/E0, v/h, gap/h)."""
+    scale = (1.0 - nu * nu) / E0
+    out = dict(fields)
+    out["pressure"] = np.asarray(fields["pressure"], float) * scale
+    for k in ("displacement", "gap"):
+        if k in fields:
+            out[k] = np.asarray(fields[k], float) / amplitude
+    return out
+
+
+def viscosine_bem(point, nodes):
+    """viscosine's own BEM as a ``--callable``: ``comparisons.verify:viscosine_bem``.
+
+    Returns the BEM's fields at its panel centres (x/λ = j/N − ½) as a dict of arrays.
+    """
+    res = _suite.bem_solution(point, int(nodes), base="/")
+    if not res.success:
+        raise RuntimeError(f"BEM not converged at N = {nodes}: {res.message.splitlines()[0]}")
+    x, p, v, g = _suite.bem_fields(res)
+    return {"x_over_lambda": x, "pressure": p, "displacement": v, "gap": g}
+
+
+def _tamaas_module():
+    try:
+        return importlib.import_module("comparisons.peers.tamaas")
+    except ImportError as exc:
+        raise _bad("--peer", "tamaas", f"comparisons.peers.tamaas is not available ({exc})",
+                   "a viscosine with the peers extra ('.[peers]')") from None
+
+
+def peer_tamaas(point, nodes, dt=None):
+    """Results of the third-party code Tamaas through :mod:`comparisons.peers.tamaas`.
+
+    Imported only here, when ``--peer tamaas`` is asked for.  ``solve(*, load, speed, ratio, hk,
+    nodes, dt)`` returns an object with ``.fields`` (a viscosine.Fields) and ``.scalars``.
+    """
+    peer = _tamaas_module()
+    kw = {"load": point.get("load"), "speed": point["speed"], "ratio": point["ratio"],
+          "hk": point["hk"], "nodes": int(nodes)}
+    if dt is not None:
+        kw["dt"] = dt
+    return peer.solve(**kw)
+
+
+# =========================================================================== comparison
+def _measure(key, value, ref):
+    if value is None or ref is None:
+        return None
+    if key in REL:
+        return abs(value - ref) / abs(ref) if ref != 0.0 else abs(value - ref)
+    return abs(value - ref)
+
+
+def _match(ref_patches, patches):
+    """Edge differences (x/λ) of matched patches; None when the patch counts differ."""
+    if len(ref_patches) != len(patches):
+        return None
+    diffs = []
+    for r in ref_patches:
+        best = min(patches, key=lambda q: abs(_suite._wrap(
+            0.5 * (q["trailing_edge"] + q["leading_edge"])
+            - 0.5 * (r["trailing_edge"] + r["leading_edge"]))))
+        shift = round(0.5 * (r["trailing_edge"] + r["leading_edge"])
+                      - 0.5 * (best["trailing_edge"] + best["leading_edge"]))
+        diffs.append((best["trailing_edge"] + shift - r["trailing_edge"],
+                      best["leading_edge"] + shift - r["leading_edge"]))
+    return diffs
+
+
+def norms(result: Result, reference: Reference):
+    """Field norms of a result against the reference on the result's grid (with the reference's
+    uncertainty in the same norms), and the reference fields there."""
+    if result.fields is None:
+        return {}, {}, None
+    f = result.fields
+    ref, unc = reference.fields(f["x_over_lambda"])
+    pm = float(np.max(np.abs(ref["pressure"])))
+    out, out_unc = {}, {}
+    dp = f["pressure"] - ref["pressure"]
+    out["pressure_L2"] = float(np.sqrt(np.mean(dp ** 2))) / pm
+    out["pressure_Linf"] = float(np.max(np.abs(dp))) / pm
+    out_unc["pressure_L2"] = float(np.sqrt(np.mean(unc["pressure"] ** 2))) / pm
+    out_unc["pressure_Linf"] = float(np.max(unc["pressure"])) / pm
+    if "displacement" in f:
+        dv = f["displacement"] - ref["displacement"]
+        out["displacement_L2"] = float(np.sqrt(np.mean(dv ** 2)))
+        out["displacement_Linf"] = float(np.max(np.abs(dv)))
+        out_unc["displacement_L2"] = float(np.sqrt(np.mean(unc["displacement"] ** 2)))
+        out_unc["displacement_Linf"] = float(np.max(unc["displacement"]))
+    if "gap" in f:
+        out["gap_Linf"] = float(np.max(np.abs(f["gap"] - ref["gap"])))
+        out_unc["gap_Linf"] = float(np.max(unc["gap"]))
+    return out, out_unc, ref
+
+
+def _tolerances(rtol, tol):
+    t = {k: rtol for k in ALL_KEYS}
+    t.update(tol or {})
+    return t
+
+
+def derivation_floor(result: Result, reference: Reference):
+    """What the derivation of scalars from fields costs on the result's grid.
+
+    The same derivation (:func:`scalars_from_fields`) applied to the reference's own fields
+    sampled on the result's grid (with the columns the result has), measured against the
+    reference's scalars and edges.  A result whose fields are the reference's own samples differs
+    by exactly this much; the verdict allows it on top of the tolerance.
+    """
+    if result.fields is None:
+        return {}
+    x = result.fields["x_over_lambda"]
+    ref, _ = reference.fields(x)
+    f = {"x_over_lambda": x, **{k: ref[k] for k in ("pressure", "displacement", "gap")
+                                 if k in result.fields}}
+    sc, patches = scalars_from_fields(f, reference.shape)
+    out = {}
+    for k in SCALAR_KEYS:
+        if k in sc and k in reference.scalars and result.source == "fields":
+            out[k] = _measure(k, sc[k], reference.scalars[k][0])
+    edges = _match(reference.patches, patches) if reference.patches else None
+    if edges:
+        out["edges"] = max(max(abs(a), abs(b)) for a, b in edges)
+    return out
+
+
+def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None):
+    """Verdicts of the finest result, and the convergence study of all of them.
+
+    A quantity passes when its difference from the reference is at most its tolerance plus, for
+    a scalar derived from fields, the derivation floor on the same grid
+    (:func:`derivation_floor`).
+
+    Returns
+    -------
+    dict
+        ``verdict`` ("PASS"/"FAIL"), ``quantities`` (rows: key, label, value, reference,
+        difference, measure, tolerance, derivation_floor, reference_uncertainty, passed, note),
+        ``edges``, ``failed`` (the labels of the failing quantities), ``nodes`` and
+        ``convergence`` (or None).
+    """
+    tols = _tolerances(rtol, tol)
+    results = sorted(results, key=lambda r: (r.nodes is None, r.nodes or 0))
+    best = results[-1]
+    floor = derivation_floor(best, reference)
+    rows = []
+    for k in SCALAR_KEYS:
+        val = best.scalars.get(k)
+        ref, unc = reference.scalars.get(k, (None, None))
+        if val is None or ref is None:
+            continue
+        d = _measure(k, val, ref)
+        unc_m = unc / abs(ref) if (k in REL and ref) else unc
+        rows.append(_row(k, val, ref, d, "relative" if k in REL else "absolute (rad)",
+                         tols[k], unc_m, floor.get(k, 0.0)))
+    nm, nm_unc, _ = norms(best, reference)
+    for k, v in nm.items():
+        rows.append(_row(k, v, 0.0, v, "relative to max σ" if k.startswith("pressure")
+                         else "absolute (over h)", tols[k], nm_unc.get(k), 0.0))
+    edges = None
+    if best.fields is not None and reference.full_contact is not None:
+        if reference.full_contact or best.scalars.get("full_contact"):
+            if bool(best.scalars.get("full_contact")) != bool(reference.full_contact):
+                rows.append(_row("edges", math.inf, 0.0, math.inf, "absolute (x/λ)",
+                                 tols["edges"], None, 0.0,
+                                 note=f"full contact: {best.scalars.get('full_contact')}, "
+                                      f"reference {reference.full_contact}"))
+        else:
+            edges = _match(reference.patches, best.patches)
+            if edges is None:
+                rows.append(_row("edges", math.inf, 0.0, math.inf, "absolute (x/λ)",
+                                 tols["edges"], None, 0.0,
+                                 note=f"{len(best.patches)} patches, reference "
+                                      f"{len(reference.patches)}"))
+            else:
+                worst = max(max(abs(a), abs(b)) for a, b in edges)
+                rows.append(_row("edges", worst, 0.0, worst, "absolute (x/λ)", tols["edges"],
+                                 None, floor.get("edges", 0.0)))
+    failed = [r["label"] for r in rows if not r["passed"]]
+    return {"verdict": "FAIL" if failed or not rows else "PASS", "quantities": rows,
+            "edges": edges, "failed": failed, "nodes": best.nodes,
+            "convergence": convergence(results, reference) if len(results) > 1 else None}
+
+
+def _row(key, value, ref, diff, measure, tol, ref_unc, floor, note=""):
+    floor = floor or 0.0
+    passed = bool(diff is not None and math.isfinite(diff) and diff <= tol + floor)
+    if not note:
+        if floor > tol:
+            note = "the grid limits this check: the derivation floor exceeds the tolerance"
+        elif ref_unc is not None and math.isfinite(ref_unc) and ref_unc > 0.1 * tol:
+            note = "the reference's uncertainty exceeds a tenth of the tolerance"
+    return {"key": key, "label": LABELS[key], "value": value, "reference": ref,
+            "difference": diff, "measure": measure, "tolerance": tol, "derivation_floor": floor,
+            "reference_uncertainty": ref_unc, "passed": passed, "note": note}
+
+
+ORDER_FLOOR = 1e-12  # differences below this are round-off: left out of the order fit
+
+
+def fit_order(nodes, errors):
+    """Order p of err ∝ N^−p: least squares over the finite errors above ORDER_FLOOR (NaN when
+    fewer than two remain)."""
+    n = np.asarray(nodes, float)
+    e = np.asarray([np.nan if v is None else v for v in errors], float)
+    ok = np.isfinite(e) & (e > ORDER_FLOOR)
+    if ok.sum() < 2:
+        return float("nan")
+    return float(-np.polyfit(np.log(n[ok]), np.log(e[ok]), 1)[0])
+
+
+def convergence(results, reference):
+    """Per quantity: values and errors against the reference over N, the order of the error,
+    the self-convergence order and Richardson value, and the Richardson value's error."""
+    res = [r for r in results if r.nodes is not None]
+    nodes = [r.nodes for r in res]
+    out = {"nodes": nodes, "quantities": {}}
+    norm_rows = [norms(r, reference)[0] for r in res]
+    for k in SCALAR_KEYS + NORM_KEYS[:-1]:
+        if k in SCALAR_KEYS:
+            vals = [r.scalars.get(k) for r in res]
+            ref = reference.scalars.get(k, (None, None))[0]
+            if ref is None or any(v is None for v in vals):
+                continue
+            errs = [_measure(k, v, ref) for v in vals]
+        else:
+            vals = [nr.get(k) for nr in norm_rows]
+            if any(v is None for v in vals):
+                continue
+            errs, ref = vals, 0.0
+        q = {"values": vals, "errors": errs, "order_vs_reference": fit_order(nodes, errs)}
+        if k in SCALAR_KEYS and len(vals) >= 3 and _doubling(nodes):
+            st = _suite.study(nodes, vals, last=min(_suite.LAST, len(vals) - 1))
+            q.update(self_order=st["order"], richardson=st["richardson"],
+                     richardson_error=_measure(k, st["richardson"], ref)
+                     if math.isfinite(st["richardson"]) else None)
+        out["quantities"][k] = q
+    return out
+
+
+def _doubling(nodes):
+    return all(b == 2 * a for a, b in zip(nodes[:-1], nodes[1:]))
+
+
+# =========================================================================== report
+def _fmt(v, spec=".6g"):
+    if v is None:
+        return "—"
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, float) and not math.isfinite(v):
+        return "inf" if v > 0 else "—"
+    return format(v, spec)
+
+
+def _figures(folder, results, reference, ev, label):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    names = []
+    best = sorted(results, key=lambda r: r.nodes or 0)[-1]
+    if best.fields is not None:
+        f = best.fields
+        x = f["x_over_lambda"]
+        order = np.argsort(_suite_wrap(x))
+        xs = _suite_wrap(x)[order]
+        ref, _ = reference.fields(x)
+        rows = 3 if "displacement" in f else 2
+        fig, axes = plt.subplots(rows, 1, figsize=(7.5, 2.6 * rows), sharex=True)
+        step = max(1, x.size // 128)
+        ax = axes[0]
+        ax.plot(xs, ref["pressure"][order], "k-", lw=1.0, label=f"reference ({reference.road})")
+        ax.plot(xs[::step], f["pressure"][order][::step], "o", ms=3, mfc="none", color="C3",
+                label=label)
+        ax.set_ylabel("σ(1 − ν²)/E0")
+        ax.legend(fontsize=7)
+        if "displacement" in f:
+            ax = axes[1]
+            ax.plot(xs, ref["displacement"][order], "k-", lw=1.0, label="reference")
+            ax.plot(xs[::step], f["displacement"][order][::step], "s", ms=2.5, mfc="none",
+                    color="C0", label=label)
+            ax.set_ylabel("v/h")
+            ax.legend(fontsize=7)
+        ax = axes[-1]
+        pm = float(np.max(np.abs(ref["pressure"])))
+        ax.plot(xs, (f["pressure"] - ref["pressure"])[order] / pm, "C3-", lw=0.8,
+                label="(σ − σ_ref)/max σ_ref")
+        if "displacement" in f:
+            ax.plot(xs, (f["displacement"] - ref["displacement"])[order], "C0-", lw=0.8,
+                    label="(v − v_ref)/h")
+        ax.set_ylabel("difference")
+        ax.set_xlabel("x/λ (crest at 0, sliding toward +x)")
+        ax.legend(fontsize=7)
+        for a in axes:
+            a.grid(True, alpha=0.3)
+        axes[0].set_title(f"{label}, N = {best.nodes}, against the {reference.road} reference",
+                          fontsize=9)
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, "fields.png"), dpi=100)
+        plt.close(fig)
+        names.append(("fields.png", f"σ and v of {label} (markers) against the reference (lines), "
+                                    "and their difference"))
+    conv = ev["convergence"]
+    if conv and conv["quantities"]:
+        fig, ax = plt.subplots(figsize=(7.0, 4.6))
+        n = np.array(conv["nodes"], float)
+        colours = plt.cm.tab20(np.linspace(0.0, 1.0, 20))
+        for i, (k, q) in enumerate(conv["quantities"].items()):
+            e = np.array([np.nan if v is None else v for v in q["errors"]], float)
+            if not np.any(e > ORDER_FLOOR):
+                continue  # round-off only (e.g. a load that the solver imposes exactly)
+            ax.loglog(n, e, "os^dv<>ph*"[i % 10] + "-", ms=4, mfc="none",
+                      color=colours[(3 * i) % 20],
+                      label=f"{LABELS[k]}: p = {_fmt(q['order_vs_reference'], '.2f')}")
+        ax.set_xlabel("N (resolution of the solver under test)")
+        ax.set_ylabel("difference from the reference")
+        ax.set_title(f"Convergence of {label} against the {reference.road} reference", fontsize=9)
+        ax.grid(True, which="both", alpha=0.3)
+        ax.legend(fontsize=6, ncol=2)
+        fig.tight_layout()
+        fig.savefig(os.path.join(folder, "convergence.png"), dpi=100)
+        plt.close(fig)
+        names.append(("convergence.png", f"Differences of {label} from the reference against N, "
+                                         "with the fitted orders p"))
+    return names
+
+
+def _suite_wrap(x):
+    x = np.asarray(x, float)
+    return x - np.floor(x + 0.5)
+
+
+def markdown(ev, point, reference, results, label, figures, inputs, case=None):
+    """The report as Markdown."""
+    from ._html import table
+    lines = [f"# viscosine verify: {label}", ""]
+    n_fail = len(ev["failed"])
+    lines += [f"**Verdict: {ev['verdict']}**" + (
+        f" — {n_fail} of {len(ev['quantities'])} quantities outside their tolerance: "
+        + ", ".join(ev["failed"]) if n_fail else
+        f" — all {len(ev['quantities'])} quantities within their tolerance"), ""]
+    op = [[k, _fmt(v) if isinstance(v, (int, float)) else str(v)] for k, v in point.items()
+          if v is not None]
+    if case:
+        op.insert(0, ["suite case", f"{case['name']}: {case['title']}"])
+    lines += ["## Operating point", "", table(["input", "value"], op)]
+    lines += ["## Reference", "", f"The reference is {reference.description}.", ""]
+    lines += [f"## Verdict per quantity (finest result, N = {ev['nodes']})", "",
+              "Differences are relative for μ, τ̃f, Δ/h, s/h, p̃∞ and 2a/λ, absolute for ka, ke, "
+              "kê (rad) and the contact edges (x/λ); field norms are over the solver's grid, σ "
+              "relative to the reference's max σ, v and gap in units of h.", ""]
+    rows = [[r["label"], _fmt(r["value"], ".10g"), _fmt(r["reference"], ".10g"),
+             _fmt(r["difference"], ".2e"), r["measure"], _fmt(r["tolerance"], ".1e"),
+             _fmt(r["derivation_floor"], ".1e"), _fmt(r["reference_uncertainty"], ".1e"),
+             "PASS" if r["passed"] else "FAIL", r["note"]] for r in ev["quantities"]]
+    lines += [table(["quantity", "value", "reference", "difference", "measure", "tolerance",
+                     "derivation floor", "reference uncertainty", "verdict", "note"], rows),
+              "A quantity passes when its difference is at most its tolerance plus its derivation "
+              "floor: what the same derivation of scalars from fields gives on the reference's own "
+              "fields sampled on the solver's grid (the rectangle rule on point samples of a field "
+              "with square-root edges errs by O(M^-1.5)).", ""]
+    best = sorted(results, key=lambda r: r.nodes or 0)[-1]
+    if best.patches or reference.patches:
+        prow = []
+        for j, p in enumerate(best.patches, 1):
+            prow.append([str(j), _fmt(p["trailing_edge"], ".8f"), _fmt(p["leading_edge"], ".8f"),
+                         _fmt(p["load"], ".6g"), _fmt(p["ka"], ".8f"), _fmt(p["ke"], ".8f"),
+                         _fmt(p["ke_hat"], ".8f")])
+        lines += ["### Contact patches from the solver's fields", "",
+                  table(["patch", "trailing edge", "leading edge", "load", "ka", "ke", "kê"], prow)
+                  if prow else "(no fields)\n"]
+        if ev["edges"]:
+            lines += [table(["patch", "trailing edge − reference", "leading edge − reference"],
+                            [[str(j), f"{a:.2e}", f"{b:.2e}"]
+                             for j, (a, b) in enumerate(ev["edges"], 1)])]
+    for name, caption in figures:
+        lines += [f"![{caption}]({name})", ""]
+    conv = ev["convergence"]
+    if conv:
+        lines += ["## Convergence study of the solver", "",
+                  "Order vs reference: least-squares slope of log |difference| against log N. "
+                  "Self-convergence: the order of successive differences and the Richardson "
+                  "value (comparisons.suite.study), when N doubles from one result to the next.", ""]
+        head = ["quantity"] + [f"N = {n}" for n in conv["nodes"]] + [
+            "order vs reference", "self order", "Richardson", "Richardson − reference"]
+        rows = []
+        for k, q in conv["quantities"].items():
+            rows.append([LABELS[k]] + [_fmt(e, ".2e") for e in q["errors"]]
+                        + [_fmt(q["order_vs_reference"], ".2f"), _fmt(q.get("self_order"), ".2f"),
+                           _fmt(q.get("richardson"), ".10g"),
+                           _fmt(q.get("richardson_error"), ".2e")])
+        lines += ["Differences from the reference at each N:", "", table(head, rows)]
+    lines += ["## How the scalars are computed from fields", "", SCALARS_FROM_FIELDS, ""]
+    import viscosine
+    prov = [["viscosine", viscosine.__version__], ["python", platform.python_version()],
+            ["numpy", np.__version__],
+            ["date (UTC)", datetime.datetime.now(datetime.timezone.utc)
+             .strftime("%Y-%m-%d %H:%M:%S")]]
+    prov += [[k, v] for k, v in inputs.items()]
+    lines += ["## Provenance", "", table(["item", "value"], prov)]
+    return "\n".join(lines)
+
+
+SCALARS_FROM_FIELDS = (
+    "p̃∞ = mean σ over the grid; τ̃f = −(1/2π) mean σ (ky)′ (eq. 3.1 with ∂v/∂x = ∂y/∂x on the "
+    "contact); μ = τ̃f/p̃∞; s/h = mean gap (or, without a gap column, the mean of y/h − v over "
+    "the contact points); Δ/h = 1 − s/h; contact points σ > 1e-9 max σ; each edge is the zero of "
+    "a least-squares cubic through σ² inside and gap^(2/3) outside, over points ~√M/16 … √M/2 "
+    "from the edge, averaged; ka = π·width, ke = 2π(centre − summit), kê = 2π(centroid − summit); "
+    "in full contact kê = arg(ŷ_n/σ̂_n)/n in the profile's dominant mode.")
+
+
+def _jsonable(o):
+    if isinstance(o, dict):
+        return {k: _jsonable(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [_jsonable(v) for v in o]
+    if isinstance(o, (np.floating, float)):
+        return float(o) if math.isfinite(o) else None
+    if isinstance(o, (np.integer,)):
+        return int(o)
+    if isinstance(o, np.bool_):
+        return bool(o)
+    return o
+
+
+def write_report(folder, ev, point, reference, results, label, inputs, case=None,
+                 figures=True):
+    """Write report.md, report.html (offline) and verdict.json into ``folder``."""
+    from . import _html
+    os.makedirs(folder, exist_ok=True)
+    figs = _figures(folder, results, reference, ev, label) if figures else []
+    md = markdown(ev, point, reference, results, label, figs, inputs, case)
+    _suite._atomic_write(Path(folder) / "report.md", md)
+    _suite._atomic_write(Path(folder) / "report.html",
+                         _html.render(md, folder, title=f"viscosine verify: {label}"))
+    doc = {"verdict": ev["verdict"], "failed": ev["failed"], "label": label, "point": point,
+           "case": case["name"] if case else None, "reference": {
+               "road": reference.road, "description": reference.description},
+           "nodes": ev["nodes"], "quantities": ev["quantities"], "edges": ev["edges"],
+           "convergence": ev["convergence"], "inputs": inputs,
+           "results": [{"nodes": r.nodes, "source": r.source, "scalars": r.scalars,
+                        "patches": r.patches} for r in results]}
+    _suite._atomic_write(Path(folder) / "verdict.json",
+                         json.dumps(_jsonable(doc), indent=1, ensure_ascii=False,
+                                    allow_nan=False) + "\n")
+
+
+# =========================================================================== Python API
+def _point_and_case(case):
+    if isinstance(case, str):
+        return point_from_case(case)
+    if isinstance(case, dict):
+        point = {"ratio": None, "hk": None, **case}
+        if not point.get("prony") and point["ratio"] is None:
+            point["ratio"] = 3.0
+        if not point.get("profile") and point["hk"] is None:
+            point["hk"] = 1.0
+        point = {k: v for k, v in point.items() if v is not None}
+        for k in ("profile", "prony"):
+            if point.get(k):
+                point[k] = str(Path(point[k]).resolve())
+        return check_point(point, option_prefix=""), None
+    raise TypeError(f"case={case!r}: a suite case name or an operating-point dict")
+
+
+def assert_agrees(fields_or_scalars, case, rtol=DEFAULT_RTOL, tol=None):
+    """Assert that a result agrees with the reference of a case (pytest-friendly).
+
+    Parameters
+    ----------
+    fields_or_scalars : viscosine.Fields, dict, or object with ``.fields``
+        Fields over one period (a Fields, or a dict with ``x_over_lambda`` and ``pressure`` and
+        optionally ``displacement``, ``gap``), or a dict of scalars keyed like the conventions.
+    case : str or dict
+        A suite case name, or an operating point (``load`` or ``penetration``, ``speed``, and
+        ``ratio``/``hk`` or ``prony``/``profile`` file paths).
+    rtol : float
+        Tolerance of every quantity (relative or absolute as in the module docstring).
+    tol : dict, optional
+        Tolerances per quantity (keys of ALL_KEYS), overriding ``rtol``.
+
+    Raises
+    ------
+    AssertionError
+        Naming each quantity outside its tolerance, both values and the difference.
+    """
+    point, c = _point_and_case(case)
+    ref = reference_for(point, c)
+    obj = fields_or_scalars
+    is_scalars = isinstance(obj, dict) and "pressure" not in obj and "x_over_lambda" not in obj
+    if is_scalars:
+        sc = {k: float(v) for k, v in obj.items() if k in SCALAR_KEYS and v is not None}
+        results = [Result(obj.get("nodes"), None, sc, [], "solver")]
+    else:
+        f = _as_fields(obj, "fields_or_scalars", type(obj).__name__)
+        results = results_from_fields([f], ref.shape)
+    ev = evaluate(results, ref, rtol=rtol, tol=tol)
+    if ev["verdict"] != "PASS":
+        bad = [r for r in ev["quantities"] if not r["passed"]]
+        lines = [f"{r['label']} ({r['key']}): {_fmt(r['value'], '.10g')} vs reference "
+                 f"{_fmt(r['reference'], '.10g')}, difference {_fmt(r['difference'], '.3e')} "
+                 f"({r['measure']}) > tolerance {r['tolerance']:.1e}"
+                 + (f" [{r['note']}]" if r["note"] else "") for r in bad]
+        if not ev["quantities"]:
+            lines = ["no quantity could be compared with the reference"]
+        raise AssertionError(f"disagrees with the {ref.road} reference of "
+                             f"{case if isinstance(case, str) else point}:\n  "
+                             + "\n  ".join(lines))
+    return ev
+
+
+# =========================================================================== command line
+def _float_opt(name):
+    def conv(text):
+        try:
+            v = float(text)
+        except ValueError:
+            import argparse
+            raise argparse.ArgumentTypeError(f"--{name} {text!r}: not a number") from None
+        return v
+    return conv
+
+
+def _int_opt(name):
+    def conv(text):
+        try:
+            return int(text)
+        except ValueError:
+            import argparse
+            raise argparse.ArgumentTypeError(f"--{name} {text!r}: not an integer") from None
+    return conv
+
+
+def add_parser(sub):
+    """Register ``verify`` on the subparsers ``sub`` of the command line."""
+    p = sub.add_parser("verify", help="verify another code's results against viscosine's "
+                                      "reference: verdict, report.md/.html, verdict.json")
+    p.add_argument("--case", default=None, help="a suite case (see `suite --list`)")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--load", type=_float_opt("load"), default=None, help="p̃∞ = p∞(1 − ν²)/E0")
+    g.add_argument("--penetration", type=_float_opt("penetration"), default=None, help="Δ/h")
+    p.add_argument("--speed", type=_float_opt("speed"), default=None, help="V/V0 = Vτk")
+    p.add_argument("--ratio", type=_float_opt("ratio"), default=None, help="E∞/E0 (default 3)")
+    p.add_argument("--hk", type=_float_opt("hk"), default=None, help="h k (default 1)")
+    p.add_argument("--profile", default=None, help="profile file (bem.read_profile)")
+    p.add_argument("--prony", default=None, help="Prony creep function file (bem.read_prony)")
+    src = p.add_mutually_exclusive_group(required=True)
+    src.add_argument("--fields", nargs="+", metavar="F.csv", default=None,
+                     help="fields CSV files (several: a convergence study)")
+    src.add_argument("--scalars", metavar="F.jsonl", default=None, help="JSON lines of scalars")
+    src.add_argument("--callable", metavar="MODULE:FUNCTION", default=None,
+                     help="function(point, nodes) returning fields")
+    src.add_argument("--peer", choices=["tamaas"], default=None, help="a third-party code")
+    p.add_argument("--nodes", type=_int_opt("nodes"), nargs="+", default=None,
+                   help=f"resolutions for --callable/--peer (default {' '.join(map(str, DEFAULT_NODES))})")
+    p.add_argument("--dt", type=_float_opt("dt"), default=None, help="--peer: time step")
+    p.add_argument("--rtol", type=_float_opt("rtol"), default=DEFAULT_RTOL,
+                   help=f"tolerance of every quantity (default {DEFAULT_RTOL:g})")
+    p.add_argument("--tol", action="append", default=[], metavar="NAME=VALUE",
+                   help=f"tolerance of one quantity: {', '.join(ALL_KEYS)}")
+    p.add_argument("--units", choices=["conventions", "SI"], default="conventions",
+                   help="units of the fields files (SI: Pa, m, m)")
+    for name, unit in (("E0", "Pa"), ("Einf", "Pa"), ("tau", "s"), ("nu", "-"),
+                       ("wavelength", "m"), ("amplitude", "m")):
+        p.add_argument(f"--{name}", type=_float_opt(name), default=None,
+                       help=f"--units SI: {name} [{unit}]")
+    p.add_argument("--out", default="verify-report", help="output folder (default ./verify-report)")
+    p.add_argument("--label", default=None, help="name of the solver under test in the report")
+    p.add_argument("--no-figures", action="store_true", help="skip the figures")
+    return p
+
+
+def _parse_tols(items):
+    out = {}
+    for it in items:
+        if "=" not in it:
+            raise _bad("--tol", it, "not NAME=VALUE", ", ".join(ALL_KEYS))
+        k, v = it.split("=", 1)
+        k = k.strip()
+        if k not in ALL_KEYS:
+            raise _bad("--tol", it, f"unknown quantity {k!r}", ", ".join(ALL_KEYS))
+        try:
+            val = float(v)
+        except ValueError:
+            raise _bad("--tol", it, "the value is not a number", "a tolerance > 0") from None
+        if not (math.isfinite(val) and val > 0):
+            raise _bad("--tol", it, "out of range", "a finite tolerance > 0")
+        out[k] = val
+    return out
+
+
+def _point_from_args(args):
+    """(operating point, case, SI scales or None) from the parsed options."""
+    given = {k: getattr(args, k) for k in ("load", "penetration", "speed", "ratio", "hk",
+                                            "profile", "prony")}
+    if args.case:
+        extra = [k for k, v in given.items() if v is not None]
+        if extra:
+            raise _bad(f"--{extra[0]}", given[extra[0]], "given with --case",
+                       "--case alone, or the operating-point options without --case")
+        point, case = point_from_case(args.case)
+        si = None
+        if args.units == "SI":
+            si = _si_fields(args)
+        return point, case, si
+    if given["speed"] is None:
+        raise _bad("--speed", None, "missing", "--case NAME or --speed with --load/--penetration")
+    if args.units == "SI":
+        from viscosine._si import scales
+        if given["profile"] or given["prony"]:
+            raise _bad("--units", "SI", "given with --profile/--prony",
+                       "SI operating points for the sinusoid on the standard linear solid")
+        need = [k for k in ("E0", "Einf", "tau", "nu", "wavelength", "amplitude")
+                if getattr(args, k) is None]
+        if need:
+            raise _bad(f"--{need[0]}", None, "missing with --units SI",
+                       "--E0 --Einf --tau --nu --wavelength --amplitude")
+        try:
+            sc = scales(E0=args.E0, Einf=args.Einf, tau=args.tau, nu=args.nu,
+                        wavelength=args.wavelength, amplitude=args.amplitude, speed=given["speed"],
+                        mean_pressure=given["load"], penetration=given["penetration"])
+        except ValueError as exc:
+            raise BadInput(str(exc)) from None
+        point = {"load": sc.load, "penetration": sc.penetration, "speed": sc.speed,
+                 "ratio": sc.ratio, "hk": sc.hk}
+        point = {k: v for k, v in point.items() if v is not None}
+        return check_point(point), None, _si_fields(args)
+    point = {k: v for k, v in given.items() if v is not None}
+    if not point.get("prony") and point.get("ratio") is None:
+        point["ratio"] = 3.0
+    if not point.get("profile") and point.get("hk") is None:
+        point["hk"] = 1.0
+    for k in ("profile", "prony"):
+        if point.get(k):
+            point[k] = str(Path(point[k]).resolve())
+    return check_point(point), None, None
+
+
+def _si_fields(args):
+    need = [k for k in ("E0", "nu", "amplitude") if getattr(args, k) is None]
+    if need:
+        raise _bad(f"--{need[0]}", None, "missing with --units SI",
+                   "--E0, --nu and --amplitude to convert SI fields")
+    if not (args.E0 > 0 and -1.0 < args.nu <= 0.5 and args.amplitude > 0):
+        raise _bad("--E0", args.E0, "E0, nu or amplitude out of range",
+                   "E0 > 0 Pa, nu in (-1, 0.5], amplitude > 0 m")
+    return (args.E0, args.nu, args.amplitude)
+
+
+def _sha(path):
+    return hashlib.sha256(Path(path).read_bytes()).hexdigest()[:16]
+
+
+def main(args) -> int:
+    """Run ``verify`` from parsed arguments; exit status 0 (pass), 1 (fail) or 2 (bad input)."""
+    try:
+        tols = _parse_tols(args.tol)
+        if not (math.isfinite(args.rtol) and args.rtol > 0):
+            raise _bad("--rtol", args.rtol, "out of range", "a finite tolerance > 0")
+        point, case, si = _point_from_args(args)
+        nodes = args.nodes or list(DEFAULT_NODES)
+        if any(n < MIN_POINTS for n in nodes):
+            raise _bad("--nodes", min(nodes), "too small", f"integers >= {MIN_POINTS}")
+        if len(set(nodes)) != len(nodes):
+            raise _bad("--nodes", " ".join(map(str, nodes)), "repeated", "distinct resolutions")
+        if args.nodes and not (args.callable or args.peer):
+            raise _bad("--nodes", " ".join(map(str, args.nodes)), "without --callable or --peer",
+                       "--nodes with --callable or --peer (fields files carry their own N)")
+        inputs = {}
+        shape = _suite.ProfileShape(point, base="/")
+        if args.fields:
+            fl = []
+            for path in args.fields:
+                f = read_fields_csv(path, "--fields")
+                if si:
+                    f = to_conventions(f, *si)
+                fl.append(f)
+                inputs[f"--fields {path}"] = f"sha256 {_sha(path)}, {f['x_over_lambda'].size} rows"
+            if len({f["x_over_lambda"].size for f in fl}) != len(fl):
+                raise _bad("--fields", " ".join(args.fields), "two files with the same number "
+                           "of rows", "one file per resolution")
+            results = results_from_fields(fl, shape)
+            label = args.label or "fields from " + ", ".join(Path(p).name for p in args.fields)
+        elif args.scalars:
+            recs = read_scalars_jsonl(args.scalars)
+            inputs[f"--scalars {args.scalars}"] = f"sha256 {_sha(args.scalars)}"
+            results = [Result(r["nodes"], None, r["scalars"], [], "solver") for r in recs]
+            label = args.label or f"scalars from {Path(args.scalars).name}"
+        else:
+            if args.callable:
+                fn = load_callable(args.callable)
+                label = args.label or args.callable
+                call = lambda n: fn(dict(point), n)  # noqa: E731
+                opt = "--callable"
+            else:
+                if not _suite.two_roads(point):
+                    raise _bad("--peer", "tamaas", "with --profile/--prony",
+                               "the sinusoid on the standard linear solid")
+                if point.get("load") is None:
+                    raise _bad("--peer", "tamaas", "with --penetration", "--load")
+                label = args.label or "Tamaas (comparisons.peers.tamaas)"
+                call = lambda n: peer_tamaas(point, n, args.dt)  # noqa: E731
+                opt = "--peer"
+            inputs[opt] = args.callable or "tamaas"
+            if args.peer:
+                _tamaas_module()  # bad input now, before any work, if it is missing
+            fl, scs = [], []
+            for n in sorted(nodes):
+                try:
+                    obj = call(n)
+                except BadInput:
+                    raise
+                except Exception as exc:  # the solver under test failed: its verdict, not ours
+                    print(f"verify: {label} failed at N = {n}: {type(exc).__name__}: {exc}"
+                          .splitlines()[0], file=sys.stderr)
+                    return 1
+                f = _as_fields(obj, opt, label)
+                if si:
+                    f = to_conventions(f, *si)
+                fl.append(f)
+                s = getattr(obj, "scalars", None)
+                scs.append(s() if callable(s) else s)
+            results = results_from_fields(fl, shape, nodes=sorted(nodes), solver_scalars=scs)
+        if args.units == "SI":
+            inputs["units"] = f"SI (E0 = {si[0]:g} Pa, nu = {si[1]:g}, amplitude = {si[2]:g} m)"
+    except BadInput as exc:
+        print(str(exc).splitlines()[0], file=sys.stderr)
+        return 2
+    try:
+        ref = reference_for(point, case)
+        ev = evaluate(results, ref, rtol=args.rtol, tol=tols)
+        write_report(args.out, ev, point, ref, results, label, inputs, case,
+                     figures=not args.no_figures)
+    except RuntimeError as exc:
+        print(f"verify: {exc}".splitlines()[0], file=sys.stderr)
+        return 1
+    for r in ev["quantities"]:
+        print(f"{'PASS' if r['passed'] else 'FAIL'} {r['key']} ({r['label']}): "
+              f"{_fmt(r['value'], '.10g')} vs {_fmt(r['reference'], '.10g')}, difference "
+              f"{_fmt(r['difference'], '.2e')} ({r['measure']}), tolerance {r['tolerance']:.1e}")
+    conv = ev["convergence"]
+    if conv:
+        print("orders vs reference: " + ", ".join(
+            f"{k} {_fmt(q['order_vs_reference'], '.2f')}" for k, q in conv["quantities"].items()))
+    summary = (f"verify: {ev['verdict']}" + (f" ({', '.join(ev['failed'])})" if ev["failed"] else "")
+               + f"; report in {os.path.join(args.out, 'report.md')}")
+    print(summary, file=sys.stderr)
+    return 0 if ev["verdict"] == "PASS" else 1
