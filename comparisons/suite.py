@@ -195,8 +195,10 @@ def study(nodes, values, last=LAST):
 
 
 # --------------------------------------------------------------------------- the suite file
-def load_suite(path=SUITE_FILE) -> dict:
-    """The suite as a dict (``version``, ``cases``: a list of case dicts)."""
+def load_suite(path=None) -> dict:
+    """The suite as a dict (``version``, ``description``, ``rule``, ``cases``: a list of case
+    dicts); ``path`` defaults to the shipped ``suite.json``."""
+    path = SUITE_FILE if path is None else path
     try:
         with open(path, encoding="utf-8") as fh:
             return json.load(fh)
@@ -855,9 +857,10 @@ def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None,
 
 
 # --------------------------------------------------------------------------- certify
-def certify(names=(), log=None, suite_file=SUITE_FILE):
+def certify(names=(), log=None, suite_file=None):
     """Recompute the cases and write their certification into the suite data (maintainers)."""
     log = log or (lambda s: print(s, file=sys.stderr, flush=True))
+    suite_file = SUITE_FILE if suite_file is None else suite_file
     suite = load_suite(suite_file)
     cases = select(suite, names)
     for case in cases:
