@@ -2,6 +2,7 @@
 
     python -m comparisons suite --export DIR [--cases NAME ...]
     python -m comparisons suite --check [--cases NAME ...] [--out DIR] [--resume] [--workers W]
+                                        [--scheduler ADDRESS]
     python -m comparisons suite --certify [--cases NAME ...]          (maintainers)
 
 The suite lives in ``comparisons/data/suite/``: ``suite.json`` (the cases, their inputs and their
@@ -746,8 +747,21 @@ def compare(old, new, old_fields=None, new_fields=None):
 
 
 # --------------------------------------------------------------------------- check
+def _source_hash() -> str:
+    """Hash of the two roads' source files: a resumed check never reuses another code's results."""
+    import analytic
+    import bem
+    h = hashlib.sha256()
+    for pkg in (analytic, bem):
+        for f in sorted(Path(pkg.__file__).parent.glob("*.py")):
+            h.update(f.name.encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()
+
+
 def _case_key(case) -> str:
-    """Hash of what determines a case's recomputation (its definition and the input files)."""
+    """Hash of what determines a case's recomputation: its definition, its input files, the
+    version and the source of both roads."""
     import viscosine
     h = hashlib.sha256()
     h.update(json.dumps({k: case[k] for k in ("name", "point", "nodes")}, sort_keys=True).encode())
@@ -756,6 +770,7 @@ def _case_key(case) -> str:
         if case["point"].get(k):
             h.update((DATA / case["point"][k]).read_bytes())
     h.update(viscosine.__version__.encode())
+    h.update(_source_hash().encode())
     return h.hexdigest()[:20]
 
 
@@ -1010,6 +1025,13 @@ def _index_readme(suite, cases) -> str:
            "significant digits, the value rounded to them, and the error bound behind them;",
            "- `fields.csv`: pressure, displacement and gap on a stated grid, each with its "
            "certified absolute error (`<column>_err`).", "",
+           "Quantities (keys of `scalars.json`): `mu` (μ = τf/p∞), `tau_f` (τf(1 − ν²)/E0), "
+           "`penetration` (Δ/h), `separation` (s/h = 1 − Δ/h, the mean gap), `load` (p̃∞, "
+           "certified under penetration control), `contact_fraction` (2a/λ), `ka`, `ke`, "
+           "`ke_hat` (one patch or full contact); with several patches, per patch: `summit` "
+           "(x/λ of the highest profile point in the patch), `trailing_edge`, `leading_edge` "
+           "(x/λ), `load` (its share of p̃∞), `ka`, `ke`, `ke_hat`. `exact` lists what holds by "
+           "construction (full contact: ka = π, Δ/h = 1, s = 0; the input Δ/h).", "",
            "Units and signs: pressure σ(1 − ν²)/E0 (positive in compression), displacement v/h "
            "(positive into the body, from the mean line of the deformed surface), gap/h; "
            "x/λ with the crest at 0 and the indenter sliding toward +x; μ = τf/p∞ with τf "
@@ -1037,10 +1059,12 @@ def add_parser(sub):
     g.add_argument("--list", action="store_true", help="print the cases and their digits")
     p.add_argument("--cases", nargs="+", metavar="NAME", default=[],
                    help="restrict to these cases")
-    p.add_argument("--out", metavar="DIR", default=None,
-                   help="--check: write each recomputed case here as it is done")
+    p.add_argument("--out", metavar="DIR", default="suite-check",
+                   help="--check: write each recomputed case here as soon as it is done "
+                        "(default ./suite-check)")
     p.add_argument("--resume", action="store_true",
-                   help="--check: reuse the cases already recomputed in --out")
+                   help="--check: reuse the cases already recomputed in --out (same case "
+                        "definition, files, version and solver source)")
     p.add_argument("--workers", type=int, default=1, help="--check: processes (default 1)")
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="--check: a Dask distributed scheduler to run the cases on")
@@ -1050,8 +1074,6 @@ def add_parser(sub):
 def main(args) -> int:
     """Run ``suite`` from parsed arguments; exit status 0, 1 (a digit changed) or 2 (bad input)."""
     try:
-        if args.resume and not args.out:
-            raise SuiteError("--resume needs --out DIR (where the recomputed cases are)")
         if args.workers < 1:
             raise SuiteError(f"--workers {args.workers} is not allowed: an integer >= 1")
         suite = load_suite()
