@@ -252,6 +252,42 @@ def test_peer_tamaas_missing_is_bad_input(capsys):
     assert rc == 2 and err.startswith("--peer tamaas: comparisons.peers.tamaas is not available")
 
 
+def test_peer_tamaas_is_called_with_the_operating_point(tmp_path, capsys, monkeypatch):
+    """The wiring of --peer tamaas, with a stand-in module (the real one is tested with Tamaas):
+    solve(*, load, speed, ratio, hk, nodes, dt) returning .fields() and .scalars()."""
+    import sys
+    import types
+    calls = []
+
+    class Out:
+        def __init__(self, nodes):
+            x = np.arange(nodes) / nodes - 0.5
+            self._f = analytic.solve(load=0.3, speed=1.0).fields(x)
+
+        def fields(self, x_over_lambda=None):
+            return self._f
+
+        def scalars(self):
+            return {"mu": suite.get_case(CASE)["certified"]["scalars"]["mu"]["value"],
+                    "ke": None, "full_contact": False}
+
+    def solve(*, load, speed, ratio, hk, nodes, dt=None):
+        calls.append((load, speed, ratio, hk, nodes, dt))
+        return Out(nodes)
+
+    fake = types.ModuleType("comparisons.peers.tamaas")
+    fake.solve = solve
+    monkeypatch.setitem(sys.modules, "comparisons.peers.tamaas", fake)
+    rc, out, err = _run(capsys, "--case", CASE, "--peer", "tamaas", "--nodes", "2048", "4096",
+                        "--dt", "0.5", "--out", str(tmp_path), "--no-figures")
+    assert rc == 0, out + err
+    assert calls == [(0.3, 1.0, 3.0, 1.0, 2048, 0.5), (0.3, 1.0, 3.0, 1.0, 4096, 0.5)]
+    doc = json.loads((tmp_path / "verdict.json").read_text(encoding="utf-8"))
+    assert doc["results"][-1]["source"] == "solver (fields for the rest)"
+    mu = next(q for q in doc["quantities"] if q["key"] == "mu")
+    assert mu["difference"] == 0.0  # the peer's own μ, not the one derived from its fields
+
+
 # ---------------------------------------------------------------------------- scalars from fields
 def test_scalars_from_fields_recover_a_sampled_solution():
     """On dense samples of the semi-analytic fields the derivation converges to the scalars."""
