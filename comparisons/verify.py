@@ -315,7 +315,8 @@ def check_point(point, option_prefix="--"):
     num("speed", lambda v: v >= 0.0, "V/V0 ≥ 0")
     if point.get("prony"):
         if point.get("ratio") is not None:
-            raise _bad("--ratio", point["ratio"], "given with --prony", "one of --ratio and --prony")
+            raise _bad("--ratio", point["ratio"], "given with --prony",
+                       "one of --ratio and --prony")
     else:
         num("ratio", lambda v: v > 1.0, "E∞/E0 > 1")
     if point.get("profile"):
@@ -1031,7 +1032,8 @@ def markdown(ev, point, reference, results, label, figures, inputs, case=None):
         lines += ["## Convergence study of the solver", "",
                   "Order vs reference: least-squares slope of log |difference| against log N. "
                   "Self-convergence: the order of successive differences and the Richardson "
-                  "value (comparisons.suite.study), when N doubles from one result to the next.", ""]
+                  "value (comparisons.suite.study), when N doubles from one result to the next.",
+                  ""]
         head = ["quantity"] + [f"N = {n}" for n in conv["nodes"]] + [
             "order vs reference", "self order", "Richardson", "Richardson − reference"]
         rows = []
@@ -1204,7 +1206,8 @@ def add_parser(sub):
                      help="function(point, nodes) returning fields")
     src.add_argument("--peer", choices=["tamaas"], default=None, help="a third-party code")
     p.add_argument("--nodes", type=_int_opt("nodes"), nargs="+", default=None,
-                   help=f"resolutions for --callable/--peer (default {' '.join(map(str, DEFAULT_NODES))})")
+                   help="resolutions for --callable/--peer (default "
+                        f"{' '.join(map(str, DEFAULT_NODES))})")
     p.add_argument("--dt", type=_float_opt("dt"), default=None, help="--peer: time step")
     p.add_argument("--rtol", type=_float_opt("rtol"), default=DEFAULT_RTOL,
                    help=f"tolerance of every quantity (default {DEFAULT_RTOL:g})")
@@ -1394,7 +1397,7 @@ def main(args) -> int:
     if conv:
         print("orders vs reference: " + ", ".join(
             f"{k} {_fmt(q['order_vs_reference'], '.2f')}" for k, q in conv["quantities"].items()))
-    summary = (f"verify: {ev['verdict']}" + (f" ({', '.join(ev['failed'])})" if ev["failed"] else "")
-               + f"; report in {os.path.join(args.out, 'report.md')}")
+    failed = f" ({', '.join(ev['failed'])})" if ev["failed"] else ""
+    summary = f"verify: {ev['verdict']}{failed}; report in {os.path.join(args.out, 'report.md')}"
     print(summary, file=sys.stderr)
     return 0 if ev["verdict"] == "PASS" else 1

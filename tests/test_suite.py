@@ -53,8 +53,8 @@ def test_suite_schema_and_files_load(data):
             assert 0 <= rec["digits"] <= suite.MAX_DIGITS
             if rec["digits"]:
                 assert rec["error"] < suite.half_unit(rec["value"], rec["digits"])
-                assert float(rec["rounded"]) == pytest.approx(rec["value"],
-                                                              abs=suite.half_unit(rec["value"], rec["digits"]))
+                half = suite.half_unit(rec["value"], rec["digits"])
+                assert float(rec["rounded"]) == pytest.approx(rec["value"], abs=half)
         for patch in cert["patches"]:
             assert set(patch) == set(suite.PATCH_KEYS)
         if p.get("prony"):
@@ -117,7 +117,8 @@ def test_digits_rule():
     assert suite.digits(0.30360962923500473, 4e-11) == 10   # 4e-11 < 5e-11
     assert suite.digits(0.30360962923500473, 5e-11) == 9    # not strictly below
     assert suite.digits(123.456, 0.004) == 5 and suite.digits(123.456, 0.04) == 4
-    assert suite.digits(1.0, 0.0) == suite.MAX_DIGITS
+    # round-off guard: half a unit of the last digit stays above 1e-10 |value|
+    assert suite.digits(1.0, 0.0) == 10 and suite.digits(0.9, 0.0) == 9
     assert suite.digits(0.0, 1e-20) == 0 and suite.digits(1.0, math.inf) == 0
     assert suite.rounded(0.30360962923500473, 6) == "0.303610"
     assert suite.rounded(-0.0016470109, 4) == "-0.001647"
@@ -260,8 +261,8 @@ def test_export_writes_readable_csv_and_json(tmp_path, data):
         profile = bem.read_profile(d / "profile.csv")
         if suite.two_roads(case["point"]):
             assert material.j_plus == pytest.approx(1.0 / case["point"]["ratio"], rel=1e-15)
-            np.testing.assert_allclose(profile.sample(64), np.cos(2 * np.pi * (np.arange(64) / 64 - 0.5)),
-                                       atol=1e-15)
+            x = np.arange(64) / 64 - 0.5
+            np.testing.assert_allclose(profile.sample(64), np.cos(2 * np.pi * x), atol=1e-15)
         else:
             assert profile.amplitude == pytest.approx(
                 bem.read_profile(suite.data_path(case["point"]["profile"])).amplitude, rel=1e-15)

@@ -141,7 +141,8 @@ def test_scalars_jsonl_with_a_convergence_study(tmp_path, capsys):
     rc, out, err = _run(capsys, "--case", CASE, "--scalars", str(path), "--rtol", "1e-5",
                         "--out", str(tmp_path / "rep"))
     assert rc == 0, out + err
-    conv = json.loads((tmp_path / "rep" / "verdict.json").read_text(encoding="utf-8"))["convergence"]
+    doc = json.loads((tmp_path / "rep" / "verdict.json").read_text(encoding="utf-8"))
+    conv = doc["convergence"]
     assert conv["quantities"]["mu"]["order_vs_reference"] == pytest.approx(2.0, abs=1e-6)
     assert conv["quantities"]["mu"]["self_order"] == pytest.approx(2.0, abs=1e-6)
     assert conv["quantities"]["mu"]["richardson_error"] < 1e-12
@@ -196,8 +197,8 @@ BAD = {
     "latin1": ("x_over_lambda,pressure\n0.0,caf\u00e9\n".encode("latin-1"), "not UTF-8 text"),
     "columns": (b"# comment\nx,p\n" + b"".join(b"%r,1\n" % (j / 8) for j in range(8)),
                 "the columns x_over_lambda and pressure are required (found: x, p)"),
-    "nonuniform": (b"x_over_lambda,pressure\n" + b"".join(b"%r,1\n" % x for x in
-                                                         (-0.5, -0.4, -0.2, 0.0, 0.1, 0.2, 0.3, 0.4)),
+    "nonuniform": (b"x_over_lambda,pressure\n"
+                   + b"".join(b"%r,1\n" % x for x in (-0.5, -0.4, -0.2, 0.0, 0.1, 0.2, 0.3, 0.4)),
                    "x_over_lambda is not a uniform grid over one period"),
     "repeated_end": (b"x_over_lambda,pressure\n" + b"".join(b"%r,1\n" % (j / 8 - 0.5)
                                                            for j in range(9)),
