@@ -162,6 +162,16 @@ def test_si_fields_with_material_and_geometry(tmp_path, capsys):
                         "--E0", str(E0), "--nu", str(nu), "--amplitude", str(h),
                         "--rtol", "1e-3", "--out", str(tmp_path / "rep"), "--no-figures")
     assert rc == 0, out + err
+    # the operating point in SI too: p∞ [Pa], V [m/s], E0, E∞ [Pa], τ [s], λ, h [m]
+    lam = 2 * np.pi * h  # hk = 1
+    rc, out, err = _run(capsys, "--load", repr(0.3 * E0 / (1 - nu ** 2)),
+                        "--speed", repr(1.0 / (0.01 * 2 * np.pi / lam)), "--units", "SI",
+                        "--E0", str(E0), "--Einf", str(3 * E0), "--tau", "0.01", "--nu", str(nu),
+                        "--wavelength", repr(lam), "--amplitude", str(h), "--fields", str(path),
+                        "--rtol", "1e-3", "--out", str(tmp_path / "rep2"), "--no-figures")
+    assert rc == 0, out + err
+    point = json.loads((tmp_path / "rep2" / "verdict.json").read_text(encoding="utf-8"))["point"]
+    assert point == pytest.approx({"load": 0.3, "speed": 1.0, "ratio": 3.0, "hk": 1.0}, rel=1e-14)
     rc, _, err = _run(capsys, "--case", CASE, "--fields", str(path), "--units", "SI")
     assert rc == 2 and err.strip() == ("--E0: missing with --units SI; allowed: --E0, --nu and "
                                        "--amplitude to convert SI fields")
