@@ -937,8 +937,10 @@ def _inputs(case, suite) -> dict:
     d.update(_control(p))
     d["speed"] = float(p["speed"])
     if p.get("profile"):
+        text = (DATA / p["profile"]).read_text(encoding="utf-8")
+        about = " ".join(ln.lstrip("# ").strip() for ln in text.splitlines() if ln.startswith("#"))
         d["profile"] = {"kind": "samples (trigonometric interpolant)", "file": "profile.csv",
-                        "description": case.get("profile_description", "")}
+                        "description": about}
     else:
         d["profile"] = {"kind": "sinusoid", "hk": float(p.get("hk", 1.0)), "file": "profile.csv"}
     if p.get("prony"):
