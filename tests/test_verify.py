@@ -1,6 +1,5 @@
 """`verify`: verdicts on the reference itself and on a perturbed copy, the convergence study of
 viscosine's own BEM fields, the Python API, SI fields, the report files and bad input."""
-import importlib.util
 import json
 
 import numpy as np
@@ -254,13 +253,6 @@ def test_bad_callable_and_scalars_exit_2(tmp_path, capsys):
     path.write_text('{"mu": 0.3}\n{"mu": 0.31}\n', encoding="utf-8")
     rc, _, err = _run(capsys, "--case", CASE, "--scalars", str(path))
     assert rc == 2 and "2 results without 'nodes'" in err and len(err.strip().splitlines()) == 1
-
-
-@pytest.mark.skipif(importlib.util.find_spec("comparisons.peers") is not None,
-                    reason="the Tamaas peer is installed: its own tests drive it")
-def test_peer_tamaas_missing_is_bad_input(capsys):
-    rc, _, err = _run(capsys, "--case", CASE, "--peer", "tamaas", "--nodes", "64")
-    assert rc == 2 and err.startswith("--peer tamaas: comparisons.peers.tamaas is not available")
 
 
 def test_peer_tamaas_is_called_with_the_operating_point(tmp_path, capsys, monkeypatch):
