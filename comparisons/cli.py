@@ -1,200 +1,539 @@
-"""The command line every part answers to (`conventions.md`).
+"""The command line every part answers to.
 
-    python -m comparisons point --solver {analytic,bem} --load P --speed S [--ratio R] [--hk H]
-                                [--nodes N] [--fields FILE.csv]
-    python -m comparisons point --solver {analytic,bem} --penetration D --speed S ...
-    python -m comparisons sweep --solver {analytic,bem} --load P [P ...] --speed S [S ...]
-                                [--ratio R] [--hk H] [--nodes N] [--workers W]
-    python -m comparisons report [--out DIR] [--quick] [--resume]
-    python -m comparisons bench [--points N] [--bem | --bem-only]
-    python -m comparisons crosscheck [--nodes N ...]
+    python -m comparisons point --solver {analytic,bem} (--load P | --penetration D) --speed S
+                                [--ratio R] [--hk H] [--nodes N | --rtol T] [--max-nodes M]
+                                [--profile F] [--prony F] [--fields FILE.csv]
+    python -m comparisons sweep --solver {analytic,bem} (--load P [P ...] | --penetration D [D ...])
+                                --speed S [S ...] [options of point]
+                                [--workers W | --scheduler ADDRESS] [--fields DIR]
+    python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
+    python -m comparisons crosscheck [--nodes N ...] | --tolerances
+    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster] [--max-log2n K]
 
-`point` prints one JSON object; `sweep` one per line as each point is done (loads outer, speeds
-inner).  Bad input: one line on standard error, exit status 2.  A point that does not converge is
-reported on standard error (with its residuals) and makes the exit status 1; it is never printed
-as a result.
+`point` prints one JSON object; `sweep` one per line, in order (loads outer, speeds inner); a
+value of a sweep may be a log range START:STOP:COUNT.  Exit status: 0 every result printed;
+1 a point could not be solved (reported on standard error, never printed as a result); 2 input
+outside what is supported, refused before any work.  Either way one line per problem on standard
+error, never a traceback.
+
+Each subcommand is one ``add_*_parser`` function and one ``_cmd_*`` function; `SUBCOMMANDS`
+lists the parser functions in the order of ``--help``.
 """
 from __future__ import annotations
 
 import argparse
 import json
+import math
+import os
+import re
+import stat
 import sys
 import time
 
 from . import runner
 
-EXIT_BAD_INPUT = 2
-EXIT_FAILED = 1
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+#: one log range START:STOP:COUNT holds at most this many values
+MAX_RANGE_COUNT = 1_000_000
 
 
 class BadInput(Exception):
-    """Raised for invalid command-line input; reported as one line, exit status 2."""
+    """Input outside what is supported: one line on standard error, exit status 2.
+
+    ``prog`` names the (sub)command; `main` adds the subcommand's when it is None.
+    """
+
+    def __init__(self, message, prog=None):
+        super().__init__(message)
+        self.prog = prog
+
+
+class Failed(BadInput):
+    """The command could not do its work: one line on standard error, exit status 1."""
 
 
 class _Parser(argparse.ArgumentParser):
-    def error(self, message):  # one line, no usage dump (conventions: one line on stderr)
-        raise BadInput(f"{self.prog}: {message}")
+    def __init__(self, *a, **k):
+        k.setdefault("allow_abbrev", False)  # --no must not silently mean --nodes
+        super().__init__(*a, **k)
+
+    def error(self, message):  # one line, no usage dump
+        raise BadInput(message, prog=self.prog)
 
 
-def _float(name):
+class _Once(argparse.Action):
+    """Store an option's value, refusing the option given twice (never silently the last)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = namespace.__dict__.setdefault("_given", set())
+        if self.dest in given:
+            parser.error(f"{option_string} given twice")
+        given.add(self.dest)
+        if self.nargs in ("+", "*"):  # a sweep token may be a list (a log range)
+            values = [v for token in values
+                      for v in (token if isinstance(token, list) else [token])]
+        setattr(namespace, self.dest, values)
+
+
+def _float(option):
     def conv(text):
         try:
-            v = float(text)
+            return float(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"--{name} {text!r}: not a number") from None
-        return v
+            raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
     return conv
 
 
-def _int(name):
+def _int(option):
     def conv(text):
         try:
             return int(text)
         except ValueError:
-            raise argparse.ArgumentTypeError(f"--{name} {text!r}: not an integer") from None
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
     return conv
 
 
-def _common(p):
-    p.add_argument("--solver", choices=["analytic", "bem"], required=True)
-    p.add_argument("--speed", type=_float("speed"), nargs="+", required=True, help="V/V0 = Vτk")
-    p.add_argument("--ratio", type=_float("ratio"), default=3.0, help="E∞/E0 (default 3)")
-    p.add_argument("--hk", type=_float("hk"), default=1.0, help="h k (default 1)")
-    p.add_argument("--nodes", type=_int("nodes"), default=None,
-                   help="BEM panels per period (default 4096); analytic: points of --fields")
-    p.add_argument("--profile", default=None,
-                   help="BEM only: periodic profile file (see bem.read_profile); replaces the sinusoid")
-    p.add_argument("--prony", default=None,
-                   help="BEM only: Prony-series creep function file (see bem.read_prony); replaces --ratio")
+def log_range(text, option="--value"):
+    """Values of one sweep token: a number, or START:STOP:COUNT (COUNT log-spaced values from
+    START to STOP, both included exactly).
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+    """
+    if ":" not in text:
+        return [_float(option)(text)]
+    parts = text.split(":")
+    bad = argparse.ArgumentTypeError
+    if len(parts) != 3:
+        raise bad(f"{text!r}: a log range is START:STOP:COUNT")
+    a, b = (_float(option)(p) for p in parts[:2])
+    try:
+        k = int(parts[2])
+    except ValueError:
+        raise bad(f"{text!r}: COUNT must be an integer") from None
+    if not (math.isfinite(a) and math.isfinite(b) and a > 0 and b > 0):
+        raise bad(f"{text!r}: START and STOP of a log range must be finite and > 0")
+    if not 1 <= k <= MAX_RANGE_COUNT or (k == 1 and a != b):
+        raise bad(f"{text!r}: COUNT must be in [2, {MAX_RANGE_COUNT}] "
+                  "(1 only when START = STOP)")
+    if k == 1:
+        return [a]
+    la, lb = math.log10(a), math.log10(b)
+    vals = [10.0 ** (la + (lb - la) * j / (k - 1)) for j in range(k)]
+    vals[0], vals[-1] = a, b  # the ends exactly as written
+    return vals
+
+
+def _values(option):
+    def conv(text):
+        return log_range(text, option)
+    return conv
+
+
+# ------------------------------------------------------------------------------ parsers
+def _solver_options(p, several):
+    """Options shared by point and sweep; `several`: sweep's lists and ranges of values."""
+    p.add_argument("--solver", choices=["analytic", "bem"], required=True, action=_Once)
+    g = p.add_mutually_exclusive_group(required=True)
+    if several:
+        rng = " (values, or log ranges START:STOP:COUNT)"
+        g.add_argument("--load", type=_values("--load"), nargs="+", action=_Once, metavar="P",
+                       help="p̃∞ = p∞(1 − ν²)/E0 > 0" + rng)
+        g.add_argument("--penetration", type=_values("--penetration"), nargs="+", action=_Once,
+                       metavar="D", help="Δ/h in (0, 1]" + rng)
+        p.add_argument("--speed", type=_values("--speed"), nargs="+", required=True,
+                       action=_Once, metavar="S", help="V/V0 = Vτk ≥ 0" + rng)
+    else:
+        g.add_argument("--load", type=_float("--load"), action=_Once, metavar="P",
+                       help="p̃∞ = p∞(1 − ν²)/E0 > 0")
+        g.add_argument("--penetration", type=_float("--penetration"), action=_Once, metavar="D",
+                       help="Δ/h in (0, 1]; the load is then an output")
+        p.add_argument("--speed", type=_float("--speed"), required=True, action=_Once,
+                       metavar="S", help="V/V0 = Vτk ≥ 0")
+    p.add_argument("--ratio", type=_float("--ratio"), action=_Once, metavar="R",
+                   help="E∞/E0 (default 3); not with --prony")
+    p.add_argument("--hk", type=_float("--hk"), action=_Once, metavar="H",
+                   help="h k (default 1); not with --profile")
+    p.add_argument("--nodes", type=_int("--nodes"), action=_Once, metavar="N",
+                   help="BEM: a fixed mesh of N panels per period (default: adaptive); analytic: "
+                        "points of --fields (default 1024), only with --fields")
+    p.add_argument("--rtol", type=_float("--rtol"), action=_Once, metavar="T",
+                   help="BEM without --nodes: refine until every estimated error is below T "
+                        f"(default {runner.DEFAULTS['rtol']:g})")
+    p.add_argument("--max-nodes", type=_int("--max-nodes"), action=_Once, metavar="M",
+                   help="BEM without --nodes: the finest mesh the refinement may reach")
+    p.add_argument("--profile", action=_Once, metavar="FILE",
+                   help="BEM only: periodic profile file (bem.read_profile); replaces the sinusoid")
+    p.add_argument("--prony", action=_Once, metavar="FILE",
+                   help="BEM only: Prony-series creep function file (bem.read_prony); replaces "
+                        "the standard linear solid")
+
+
+def _parallel_options(p, what):
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--workers", type=_int("--workers"), action=_Once, metavar="W",
+                   help=f"local processes ({what})")
+    g.add_argument("--scheduler", action=_Once, metavar="ADDRESS",
+                   help="run on the Dask distributed cluster of this scheduler (e.g. "
+                        "tcp://host:8786; needs viscosine[cluster]); not with --workers")
+
+
+def add_point_parser(sub):
+    p = sub.add_parser("point", help="solve one operating point, print one JSON object",
+                       description="Solve one operating point and print one JSON object.")
+    _solver_options(p, several=False)
+    p.add_argument("--fields", action=_Once, metavar="FILE.csv",
+                   help="also write σ, v and the gap over one period to this CSV file")
+    p.set_defaults(run=_cmd_point)
+
+
+def add_sweep_parser(sub):
+    p = sub.add_parser("sweep", help="solve every (load, speed) pair, one JSON object per line",
+                       description="Solve every (load or penetration, speed) pair, loads in the "
+                                   "outer loop, and print one JSON object per line, in order.")
+    _solver_options(p, several=True)
+    _parallel_options(p, "default 1: this process")
+    p.add_argument("--fields", action=_Once, metavar="DIR",
+                   help="also write the fields of every point to DIR/<solver>_load<P>_speed<S>.csv")
+    p.set_defaults(run=_cmd_sweep)
+
+
+def add_report_parser(sub):
+    p = sub.add_parser("report", help="cross-validation report on the paper's parameters")
+    p.add_argument("--out", action=_Once, metavar="DIR", help="output folder (default ./report)")
+    p.add_argument("--quick", action="store_true", help="coarser meshes and fewer points")
+    p.add_argument("--resume", action="store_true",
+                   help="reuse the results already in DIR/results (each one validated)")
+    _parallel_options(p, "default: all cores")
+    p.set_defaults(run=_cmd_report)
+
+
+def add_bench_parser(sub):
+    p = sub.add_parser("bench", help="benchmarks that print figures (speed, iterations, memory)")
+    p.add_argument("--points", type=_int("--points"), action=_Once, metavar="N",
+                   help="points of the swept benchmark (default 1000; 2000 with --cluster)")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--bem", action="store_true", help="also run the BEM benchmark tables")
+    g.add_argument("--bem-only", action="store_true", help="only the BEM benchmark tables")
+    g.add_argument("--cluster", action="store_true",
+                   help="a BEM sweep at N = 4096 in 1 and 2 local processes and on a 2-worker "
+                        "local Dask cluster")
+    p.add_argument("--max-log2n", type=_int("--max-log2n"), action=_Once, metavar="K",
+                   help="largest BEM mesh 2^K of the BEM speed/memory table (default 20)")
+    p.set_defaults(run=_cmd_bench)
+
+
+def add_crosscheck_parser(sub):
+    p = sub.add_parser("crosscheck",
+                       help="BEM − semi-analytic differences on the grid of operating points")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--nodes", type=_int("--nodes"), nargs="+", action=_Once, metavar="N",
+                   help="BEM meshes (default 1024 4096 16384 65536)")
+    g.add_argument("--tolerances", action="store_true",
+                   help="print the agreement tolerances the tests use (Markdown), run nothing")
+    p.set_defaults(run=_cmd_crosscheck)
+
+
+#: the subcommands, in the order of --help (one line per subcommand)
+SUBCOMMANDS = [add_point_parser, add_sweep_parser, add_report_parser, add_crosscheck_parser,
+               add_bench_parser]
 
 
 def build_parser():
     parser = _Parser(prog="python -m comparisons",
-                     description="viscosine: two roads to viscoelastic sliding of a rigid sinusoid")
+                     description="viscosine: two roads to the steady viscoelastic sliding of a "
+                                 "rigid periodic indenter")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    p = sub.add_parser("point", help="solve one operating point, print one JSON object")
-    _common(p)
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--load", type=_float("load"), nargs="+", help="p̃∞ = p∞(1 − ν²)/E0")
-    g.add_argument("--penetration", type=_float("penetration"), nargs="+", help="Δ/h in (0, 1]")
-    p.add_argument("--fields", default=None, help="write σ, v, gap over one period to this CSV")
-    p = sub.add_parser("sweep", help="solve every (load, speed) pair, one JSON object per line")
-    _common(p)
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--load", type=_float("load"), nargs="+")
-    g.add_argument("--penetration", type=_float("penetration"), nargs="+")
-    p.add_argument("--workers", type=_int("workers"), default=1, help="processes (default 1)")
-    p = sub.add_parser("report", help="cross-validation report on the paper's parameters")
-    p.add_argument("--out", default="report", help="output folder (default ./report)")
-    p.add_argument("--quick", action="store_true", help="coarser meshes and fewer points (< 2 min)")
-    p.add_argument("--resume", action="store_true", help="reuse results already written in --out")
-    p.add_argument("--workers", type=_int("workers"), default=None, help="processes (default: all cores)")
-    p = sub.add_parser("bench", help="benchmarks that print figures (speed, iterations, memory)")
-    p.add_argument("--points", type=_int("points"), default=1000,
-                   help="points of the analytic command-line sweep (default 1000)")
-    p.add_argument("--bem", action="store_true", help="also run the BEM benchmark tables")
-    p.add_argument("--bem-only", action="store_true", help="only the BEM benchmark tables")
-    p.add_argument("--max-log2n", type=_int("max-log2n"), default=20,
-                   help="largest BEM mesh 2^n of the BEM speed/memory benchmark (default 20)")
-    p = sub.add_parser("crosscheck", help="BEM − semi-analytic differences on the grid of operating points")
-    p.add_argument("--nodes", type=_int("nodes"), nargs="+", default=[1024, 4096, 16384, 65536])
+    for add in SUBCOMMANDS:
+        add(sub)
     from . import suite, verify  # the benchmark suite and verify register their own options
-    suite.add_parser(sub)
-    verify.add_parser(sub)
+    for module in (suite, verify):
+        module.add_parser(sub).set_defaults(run=module.main)
     return parser
 
 
+# ------------------------------------------------------------------------------ shared checks
 def _dump(obj):
     return json.dumps(obj, allow_nan=False)
 
 
-def _check_point_args(args, single):
-    """Range checks that argparse cannot express; raise BadInput with one line."""
-    if single:
-        for name in ("speed", "load", "penetration"):
-            vals = getattr(args, name, None)
-            if vals is not None and len(vals) != 1:
-                raise BadInput(f"point: --{name} takes one value (got {len(vals)}); use sweep for several")
-    if args.solver == "analytic" and (args.profile or args.prony):
-        raise BadInput("--profile and --prony are BEM options (the analytic road solves the "
-                       "sinusoid on the standard linear solid)")
-    if args.nodes is not None and args.nodes < 8:
-        raise BadInput(f"--nodes {args.nodes}: must be an integer ≥ 8")
-    if getattr(args, "workers", 1) is not None and getattr(args, "workers", 1) < 1:
-        raise BadInput(f"--workers {args.workers}: must be ≥ 1")
+def _stderr(text):
+    print(text, file=sys.stderr, flush=True)
 
 
-def _cmd_point(args):
-    _check_point_args(args, single=True)
-    spec = runner.spec_from_args(args, args.speed[0],
-                                 load=args.load[0] if args.load else None,
-                                 penetration=args.penetration[0] if args.penetration else None)
+def _check_output_file(option, path):
+    """An output file must be creatable: its folder exists, and it is not a folder/device/FIFO."""
+    if path == "":
+        raise BadInput(f"{option} '' is not allowed: the name of a file")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise BadInput(f"{option} {path}: the folder {folder} does not exist")
+    if os.path.lexists(path):
+        st = os.stat(path) if os.path.exists(path) else os.lstat(path)
+        if not stat.S_ISREG(st.st_mode):
+            raise BadInput(f"{option} {path}: {runner._kind(st.st_mode)}, not a regular file")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise BadInput(f"{option} {path}: the folder {folder} is not writable")
+
+
+def _check_output_dir(option, path, create):
+    """An output folder: an existing folder, or (create) one whose parent exists."""
+    if path == "":
+        raise BadInput(f"{option} '' is not allowed: the name of a folder")
+    if os.path.exists(path):
+        if not os.path.isdir(path):
+            raise BadInput(f"{option} {path}: an existing file, not a folder")
+    else:
+        parent = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(parent):
+            raise BadInput(f"{option} {path}: the folder {parent} does not exist")
+        if create:
+            try:
+                os.mkdir(path)
+            except OSError as exc:
+                raise BadInput(f"{option} {path}: cannot create the folder ({exc.strerror})") from None
+    if os.path.isdir(path) and not os.access(path, os.W_OK | os.X_OK):
+        raise BadInput(f"{option} {path}: the folder is not writable")
+
+
+def _check_workers(args):
+    if getattr(args, "workers", None) is not None and args.workers < 1:
+        raise BadInput(f"--workers {args.workers} is not allowed: an integer ≥ 1")
+
+
+def _resolve(args, *, load=None, penetration=None, speed=None, files=None):
+    try:
+        return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
+                              ratio=args.ratio, hk=args.hk, nodes=args.nodes, rtol=args.rtol,
+                              max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
+                              fields=args.fields is not None, files=files)
+    except runner.InputError as exc:
+        raise BadInput(str(exc)) from None
+
+
+def _validate(spec):
     try:
         runner.validate(spec)
-    except ValueError as exc:
-        raise BadInput(str(exc)) from None
-    out = runner.run(spec, fields=args.fields is not None)
+    except runner.InputError as exc:
+        raise BadInput(_option_names(str(exc))) from None
+
+
+def _option_names(text):
+    """'max_nodes=…' in a road's message becomes '--max-nodes …' (the option the user typed)."""
+    m = re.match(r"(\w+)=(\S+) is not allowed", text)
+    if m and m.group(1) in ("load", "penetration", "speed", "ratio", "hk", "nodes", "rtol",
+                            "max_nodes"):
+        return f"--{m.group(1).replace('_', '-')} {m.group(2)}{text[m.end(2):]}"
+    return text
+
+
+def _describe(spec):
+    ctl = "load" if spec.get("load") is not None else "penetration"
+    return f"{ctl}={spec[ctl]!r}, speed={spec['speed']!r}"
+
+
+# ------------------------------------------------------------------------------ point
+def _cmd_point(args):
+    if args.fields is not None:
+        _check_output_file("--fields", args.fields)
+    spec = _resolve(args, load=args.load, penetration=args.penetration, speed=args.speed)
+    _validate(spec)
+    out = runner.run(spec, fields=args.fields is not None, deep=True)
+    for w in out["warnings"]:
+        _stderr(f"point: warning: {w}")
+    if out["kind"] == "bad_input":
+        raise BadInput(f"{out['error']}")
     if not out["ok"]:
-        print(f"not converged: {out['error']}", file=sys.stderr)
+        _stderr(f"point: {_describe(spec)}: {out['error']}")
         return EXIT_FAILED
-    if args.fields:
-        runner.write_fields_csv(args.fields, out["fields"])
-    print(_dump(out["record"]))
-    return 0
+    if args.fields is not None:
+        _write_fields(args.fields, out, spec)
+    print(_dump(out["record"]), flush=True)
+    return EXIT_OK
+
+
+def _write_fields(path, out, spec):
+    f = out["fields"]
+    try:
+        runner.write_fields_csv(path, f, runner.fields_header(out["record"], spec,
+                                                              f.x_over_lambda.size))
+    except OSError as exc:
+        raise Failed(f"cannot write --fields {path} ({exc.strerror or exc})") from None
+
+
+# ------------------------------------------------------------------------------ sweep
+def _fmt_value(v):
+    """Shortest exact text of a float for a file name: 0.3, 1 (not 1.0), 1e-05."""
+    text = repr(float(v))
+    return text[:-2] if text.endswith(".0") else text
+
+
+def field_file_name(spec, used, index):
+    """``<solver>_<control><value>_speed<value>.csv``; unique within `used` (then ``_<index>``).
+
+    Only digits, letters, ``.``, ``+``, ``-`` and ``_`` appear (floats are finite, validated).
+    """
+    ctl = "load" if spec.get("load") is not None else "penetration"
+    stem = f"{spec['solver']}_{ctl}{_fmt_value(spec[ctl])}_speed{_fmt_value(spec['speed'])}"
+    name = f"{stem}.csv"
+    if name in used:
+        name = f"{stem}_{index + 1}.csv"
+    used.add(name)
+    return name
 
 
 def _cmd_sweep(args):
-    _check_point_args(args, single=False)
-    control = "load" if args.load else "penetration"
-    values = args.load if args.load else args.penetration
-    specs = [runner.spec_from_args(args, s, **{control: v}) for v in values for s in args.speed]
+    from . import _cluster
+    _check_workers(args)
+    control = "load" if args.load is not None else "penetration"
+    values = args.load if args.load is not None else args.penetration
+    speeds = args.speed
+    total = len(values) * len(speeds)
+    if args.fields is not None:
+        _check_output_dir("--fields", args.fields, create=False)
+    files = {}
+    for option in ("profile", "prony"):  # each file is read (and checked) once
+        path = getattr(args, option)
+        if path is not None and args.solver == "bem":
+            try:
+                files[option] = runner.read_input(option, path)
+            except runner.InputError as exc:
+                raise BadInput(f"{exc}") from None
+    base = _resolve(args, speed=speeds[0], files=files, **{control: values[0]})
+    # every input is checked before any work; the ranges are per input, so each value once
+    for v in dict.fromkeys(values):
+        _validate({**base, control: v})
+    for s in dict.fromkeys(speeds):
+        _validate({**base, "speed": s})
     try:
-        for sp in specs:
-            runner.validate(sp)
+        ex = _cluster.executor(args.workers, args.scheduler)
     except ValueError as exc:
-        raise BadInput(str(exc)) from None
-    failed = 0
+        raise BadInput(f"{exc}") from None
+    except _cluster.MissingPackage as exc:
+        raise BadInput(f"{exc}") from None
+    except _cluster.ClusterError as exc:
+        raise Failed(f"{exc}") from None
+    if args.fields is not None:
+        _check_output_dir("--fields", args.fields, create=True)
+
+    def spec_at(i):
+        return {**base, control: values[i // len(speeds)], "speed": speeds[i % len(speeds)]}
+
+    specs = (spec_at(i) for i in range(total))
+    fn = runner._run_with_fields if args.fields is not None else runner.run
+    chunk = max(1, min(64, total // (8 * max(1, ex.workers))))
+    used, failed, bad = set(), 0, 0
     t0 = last = time.monotonic()
-    for i, out in enumerate(runner.run_many(specs, workers=args.workers), 1):
-        if out["ok"]:
-            print(_dump(out["record"]), flush=True)
-        else:
-            failed += 1
-            print(f"not converged: {out['spec']}: {out['error']}", file=sys.stderr, flush=True)
-        now = time.monotonic()
-        if now - last > 2.0 or (i == len(specs) and now - t0 > 2.0):
-            print(f"sweep: {i}/{len(specs)} points, {now - t0:.1f} s", file=sys.stderr, flush=True)
-            last = now
-    return EXIT_FAILED if failed else 0
+    with ex:
+        for i, out in ex.imap(fn, specs, chunksize=chunk):
+            spec = spec_at(i)
+            where = f"sweep: point {i + 1}/{total} ({_describe(spec)})"
+            if isinstance(out, _cluster.Failure):
+                out = {"ok": False, "kind": "failed", "error": f"could not solve: {out.error}",
+                       "warnings": []}
+            for w in out["warnings"]:
+                _stderr(f"{where}: warning: {w}")
+            if out["ok"] and args.fields is not None:
+                path = os.path.join(args.fields, field_file_name(spec, used, i))
+                try:
+                    _write_fields(path, out, spec)
+                except Failed as exc:
+                    out = {**out, "ok": False, "error": str(exc)}
+            if out["ok"]:
+                print(_dump(out["record"]), flush=True)
+            else:
+                failed += 1
+                bad += out["kind"] == "bad_input"
+                _stderr(f"{where}: {out['error']}")
+            now = time.monotonic()
+            if now - last > 2.0 or (i + 1 == total and now - t0 > 2.0):
+                left = (now - t0) / (i + 1) * (total - i - 1)
+                _stderr(f"sweep: {i + 1}/{total} points, {failed} failed, {now - t0:.1f} s "
+                        f"(about {left:.0f} s left)")
+                last = now
+    if failed:
+        _stderr(f"sweep: {failed} of {total} points could not be solved")
+    return EXIT_BAD_INPUT if bad else (EXIT_FAILED if failed else EXIT_OK)
 
 
-def main(argv=None):
-    parser = build_parser()
+# ------------------------------------------------------------------------------ report, bench, crosscheck
+def _cmd_report(args):
+    _check_workers(args)
+    args.out = "report" if args.out is None else args.out
+    _check_output_dir("--out", args.out, create=False)
+    from . import _cluster, report
     try:
-        args = parser.parse_args(argv)
-        if args.command == "point":
-            return _cmd_point(args)
-        if args.command == "sweep":
-            return _cmd_sweep(args)
-        if args.command == "report":
-            from . import report
-            return report.main(args)
-        if args.command == "bench":
-            from . import bench
-            return bench.main(args)
-        if args.command == "crosscheck":
-            from . import crosscheck
-            return crosscheck.print_table(args.nodes)
-        if args.command in ("suite", "verify"):
-            from . import suite, verify
-            return {"suite": suite, "verify": verify}[args.command].main(args)
-    except BadInput as exc:
-        print(str(exc).splitlines()[0], file=sys.stderr)
-        return EXIT_BAD_INPUT
+        return report.main(args)
+    except _cluster.MissingPackage as exc:
+        raise BadInput(f"{exc}") from None
+    except _cluster.ClusterError as exc:
+        raise Failed(f"{exc}") from None
+
+
+def _cmd_bench(args):
+    if args.points is not None and args.points < 1:
+        raise BadInput(f"--points {args.points} is not allowed: an integer ≥ 1")
+    if args.max_log2n is not None and not 3 <= args.max_log2n <= 24:
+        raise BadInput(f"--max-log2n {args.max_log2n} is not allowed: an integer in [3, 24]")
+    if args.cluster and args.max_log2n is not None:
+        raise BadInput("--max-log2n is not allowed with --cluster: it sets the BEM tables")
+    from . import bench
+    return bench.main(args)
+
+
+def _cmd_crosscheck(args):
+    from . import crosscheck
+    if args.tolerances:
+        crosscheck.print_tolerances()
+        return EXIT_OK
+    nodes = args.nodes or list(crosscheck.NODES)
+    low, high = runner.bem_nodes_range()
+    for n in nodes:
+        if not low <= n <= high:
+            raise BadInput(f"--nodes {n} is not allowed: an integer in [{low}, {high}] "
+                           "(panels per period of the BEM)")
+    return crosscheck.print_table(nodes)
+
+
+# ------------------------------------------------------------------------------ main
+def main(argv=None):
+    """Run the command line; return the exit status (never raises, never prints a traceback)."""
+    parser = build_parser()
+    args = None
+    try:
+        args, extra = parser.parse_known_args(argv)
+        if extra:
+            hint = (" (point takes one value of --load/--penetration/--speed; use sweep for "
+                    "several)" if args.command == "point" else "")
+            raise BadInput(f"unrecognized arguments: {' '.join(extra)}{hint}")
+        return args.run(args)
+    except BadInput as exc:  # Failed too
+        prog = exc.prog or " ".join([parser.prog] + ([args.command] if args else []))
+        _stderr(f"{prog}: {_first_line(exc)}")
+        return EXIT_FAILED if isinstance(exc, Failed) else EXIT_BAD_INPUT
+    except SystemExit as exc:  # --help, --version
+        return exc.code if isinstance(exc.code, int) else EXIT_OK
     except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
+        _stderr("interrupted")
         return 130
-    return 0
+    except BrokenPipeError:  # the reader went away (e.g. | head): stop quietly
+        try:
+            sys.stdout = open(os.devnull, "w")
+        except OSError:
+            pass
+        return EXIT_FAILED
+    except Exception as exc:  # a bug: still one line, and the status says it failed
+        if os.environ.get("VISCOSINE_DEBUG"):
+            raise
+        _stderr(f"{parser.prog}: internal error: {type(exc).__name__}: {runner._one_line(exc)} "
+                "(set VISCOSINE_DEBUG=1 for the traceback)")
+        return EXIT_FAILED
+
+
+def _first_line(exc):
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__
 
 
 if __name__ == "__main__":  # pragma: no cover

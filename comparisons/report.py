@@ -114,8 +114,9 @@ def _run_one(job):
     return spec, with_fields, runner.run(spec, fields=with_fields)
 
 
-def execute(cfg, store, resume):
-    """Run what is missing, in parallel, writing each result as it is done."""
+def execute(cfg, store, resume, scheduler=None):
+    """Run what is missing (locally or on a Dask cluster), writing each result as it is done."""
+    from . import _cluster
     jobs = bem_runs(cfg)
     todo = [j for j in jobs if not (resume and store.has(*j))]
     # the largest meshes first, so that the long runs overlap the many short ones
@@ -123,17 +124,14 @@ def execute(cfg, store, resume):
     print(f"report: {len(jobs)} BEM runs, {len(jobs) - len(todo)} already done", file=sys.stderr)
     t0 = time.monotonic()
     if todo:
-        if cfg.workers > 1:
-            from concurrent.futures import ProcessPoolExecutor, as_completed
-            with ProcessPoolExecutor(max_workers=cfg.workers) as pool:
-                futs = [pool.submit(_run_one, j) for j in todo]
-                for i, fut in enumerate(as_completed(futs), 1):
-                    spec, f, out = fut.result()
-                    store.put(spec, out, f)
-                    _progress(i, len(todo), t0, spec, out)
-        else:
-            for i, j in enumerate(todo, 1):
-                spec, f, out = _run_one(j)
+        workers = None if scheduler else cfg.workers
+        with _cluster.executor(workers, scheduler) as ex:
+            for i, (k, value) in enumerate(ex.imap(_run_one, todo, ordered=False), 1):
+                spec, f = todo[k]
+                if isinstance(value, _cluster.Failure):  # the worker died: a failed run
+                    out = {"ok": False, "record": None, "error": value.error, "seconds": 0.0}
+                else:
+                    out = value[2]
                 store.put(spec, out, f)
                 _progress(i, len(todo), t0, spec, out)
     return time.monotonic() - t0
@@ -663,7 +661,7 @@ def main(args):
     cfg = config(args.quick, args.workers)
     os.makedirs(args.out, exist_ok=True)
     store = Store(os.path.join(args.out, "results"))
-    timings = {"BEM runs": execute(cfg, store, args.resume)}
+    timings = {"BEM runs": execute(cfg, store, args.resume, getattr(args, "scheduler", None))}
     failures = [(spec, doc["error"]) for spec, _ in bem_runs(cfg)
                 for doc in [store.get(spec)] if not doc["ok"]]
     print("report: figures and tables", file=sys.stderr)

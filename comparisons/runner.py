@@ -1,148 +1,625 @@
-"""Glue between the command line / report and the two solvers.
+"""Glue between the command line / report and the two roads.
 
-An operating point is a plain dict of dimensionless numbers (`spec`), so that nothing of one road
-leaks into the other and a spec can cross a process boundary.  `run` returns a plain dict too:
-{"ok", "record" (the JSON object of conventions.md), "error", "fields", "spec", "seconds"}.
+An operating point is a plain dict of dimensionless numbers (a *spec*), so that nothing of one
+road leaks into the other and a spec can cross a process or network boundary.  Keys:
+``solver``, ``load`` | ``penetration``, ``speed``, ``ratio``, ``hk``, ``nodes``, ``rtol``,
+``max_nodes``, ``profile``, ``prony`` (None, or ``{"path", "sha256"}`` of the file read) and
+``field_points`` (analytic road: points of the written fields).  Keys starting with ``_`` carry
+the parsed input files to the worker and are never recorded.
+
+- :func:`resolve` turns command-line options (None = not given) into a spec: it is the one place
+  where defaults are applied and options that do not apply are refused.
+- :func:`validate` checks a spec through the roads' own ``validate`` (the single source of the
+  accepted ranges) and raises :class:`InputError` (exit status 2).
+- :func:`run` solves one spec and returns a plain dict ``{"ok", "kind", "record", "error",
+  "warnings", "fields", "spec", "seconds"}``; it never raises for a failing solve: any exception,
+  an unconverged result or a result that fails :func:`check_record` is ``ok = False`` with a
+  one-line ``error``.
+
+Each road is reached through one adapter (:func:`_analytic`, :func:`_bem`) that returns the
+road's JSON record (``result.as_dict()``), its fields and the constraint figures the last line of
+defence checks.
 """
 from __future__ import annotations
 
-import csv
+import hashlib
+import inspect
 import math
 import os
+import secrets
+import stat
 import time
+import warnings as _warnings
+from typing import NamedTuple
 
 import numpy as np
 
-DEFAULT_NODES = 4096
-DEFAULT_FIELD_POINTS = 1024
+import viscosine
+from viscosine import Fields
+
+#: every default of the command line, applied in `resolve` only
+DEFAULTS = {"ratio": 3.0, "hk": 1.0, "rtol": 1e-6, "field_points": 1024,
+            "nodes_without_adaptive": 4096}
+#: BEM meshes refused beyond this when the BEM does not export its own cap (bem.ACCEPTED)
+FALLBACK_MAX_NODES = 2 ** 20
+#: points of the analytic fields (--nodes with --fields): 8 … 2^20 (about 10 µs per point)
+FIELD_POINTS = (8, 2 ** 20)
+#: the last line of defence: round-off allowances of the physical checks
+RANGE_ROUNDOFF = 1e-12     # Δ/h ≤ 1, ka ≤ π, contact fraction ≤ 1, μ ≥ 0, τf ≥ 0
+CONSTRAINT_ROUNDOFF = 1e-8  # σ ≥ 0 (over max σ), gap ≥ 0 (over h): the solvers' own tolerances
+CONTROL_MISMATCH = 1e-6    # achieved load (or Δ/h) against the one asked for, and mean σ = load
+
+SPEC_KEYS = ("solver", "load", "penetration", "speed", "ratio", "hk", "nodes", "rtol", "max_nodes",
+             "profile", "prony", "field_points")
+SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
+               "mu")
 
 
-def spec_from_args(args, speed, load=None, penetration=None):
-    return {"solver": args.solver, "load": load, "penetration": penetration, "speed": speed,
-            "ratio": args.ratio, "hk": args.hk, "nodes": args.nodes,
-            "profile": getattr(args, "profile", None), "prony": getattr(args, "prony", None)}
+class InputError(ValueError):
+    """Input outside what is supported (command line: one line on standard error, exit 2)."""
 
 
+# ------------------------------------------------------------------------------ capabilities
+def _bem_solve_parameters():
+    import bem
+    return inspect.signature(bem.solve).parameters
+
+
+def bem_adaptive():
+    """True when the BEM refines its mesh itself (``nodes=None`` with ``rtol``)."""
+    return "rtol" in _bem_solve_parameters()
+
+
+def bem_nodes_range():
+    """(smallest, largest) N the BEM accepts: its own ``ACCEPTED['nodes']`` when exported."""
+    import bem
+    acc = getattr(bem, "ACCEPTED", {}).get("nodes")
+    if acc is not None:
+        return int(acc[0]), int(acc[1])
+    return 8, FALLBACK_MAX_NODES
+
+
+# ------------------------------------------------------------------------------ specs
 def point_spec(solver, speed, load=None, penetration=None, ratio=3.0, hk=1.0, nodes=None):
-    return {"solver": solver, "load": load, "penetration": penetration, "speed": speed,
-            "ratio": ratio, "hk": hk, "nodes": nodes, "profile": None, "prony": None}
+    """A spec for the report and the cross-check (numbers only; BEM ``nodes`` pinned or adaptive)."""
+    spec = dict.fromkeys(SPEC_KEYS)
+    spec.update(solver=solver, load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk)
+    if solver == "bem":
+        spec["nodes"] = nodes
+        if nodes is None:
+            if bem_adaptive():
+                spec["rtol"] = DEFAULTS["rtol"]
+            else:
+                spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
+    return spec
 
 
-def _finite(name, v, cond, allowed):
-    if v is None or isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or not cond(v):
-        raise ValueError(f"{name} = {v!r}: must be {allowed}")
+def public(spec):
+    """The spec without the parsed objects it carries to the worker (JSON-ready)."""
+    return {k: v for k, v in spec.items() if not k.startswith("_")}
 
 
-def validate(spec):
-    """Raise ValueError (parameter, value, what is allowed) for an invalid operating point."""
-    _finite("speed", spec["speed"], lambda v: v >= 0.0, "finite and ≥ 0")
-    if spec.get("load") is not None:
-        _finite("load", spec["load"], lambda v: v > 0.0, "finite and > 0")
+def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=None, nodes=None,
+            rtol=None, max_nodes=None, profile=None, prony=None, fields=False, files=None):
+    """Command-line options (None = not given) → spec, with the defaults applied here only.
+
+    Options that do not apply to the chosen inputs are refused, never recorded as if used:
+    ``hk`` with ``profile``, ``ratio`` with ``prony``, ``profile``/``prony``/``rtol``/
+    ``max_nodes`` on the analytic road, ``nodes`` on the analytic road without fields (there it
+    is the number of points of the written fields), ``rtol``/``max_nodes`` with a fixed BEM mesh.
+
+    Parameters
+    ----------
+    files : dict, optional
+        Already read input files ``{"profile": (info, object), "prony": (info, object)}``, so
+        that a sweep reads each file once; otherwise they are read here.
+
+    Raises
+    ------
+    InputError
+    """
+    def refuse(option, why):
+        raise InputError(f"{option} is not allowed here: {why}")
+
+    if solver == "analytic":
+        if profile is not None or prony is not None:
+            refuse("--profile" if profile is not None else "--prony",
+                   "a BEM option (the semi-analytic road solves the sinusoid on the standard "
+                   "linear solid; use --solver bem)")
+        if rtol is not None or max_nodes is not None:
+            refuse("--rtol" if rtol is not None else "--max-nodes",
+                   "a BEM option (the semi-analytic road has no mesh)")
+        if nodes is not None and not fields:
+            refuse("--nodes", "on the semi-analytic road --nodes is the number of points of "
+                   "--fields, and no --fields was given")
+    elif solver == "bem":
+        if hk is not None and profile is not None:
+            refuse("--hk", "the --profile file fixes the indenter and its amplitude")
+        if ratio is not None and prony is not None:
+            refuse("--ratio", "the --prony file fixes the material")
+        if nodes is not None and (rtol is not None or max_nodes is not None):
+            refuse("--rtol" if rtol is not None else "--max-nodes",
+                   f"--nodes {nodes} fixes the mesh; --rtol and --max-nodes steer the adaptive "
+                   "refinement (without --nodes)")
+        if (rtol is not None or max_nodes is not None) and not bem_adaptive():
+            refuse("--rtol" if rtol is not None else "--max-nodes",
+                   "this BEM has no adaptive refinement; give --nodes N")
     else:
-        _finite("penetration", spec.get("penetration"), lambda v: 0.0 < v <= 1.0, "in (0, 1]")
-    _finite("ratio", spec["ratio"], lambda v: v > 1.0, "finite and > 1")
-    _finite("hk", spec["hk"], lambda v: v > 0.0, "finite and > 0")
-    if spec["solver"] == "analytic":
-        import analytic
-        analytic.validate(load=spec.get("load"), speed=spec["speed"], ratio=spec["ratio"],
-                          hk=spec["hk"], penetration=spec.get("penetration"))
-    else:
-        nodes = spec.get("nodes")
-        if nodes is not None and (isinstance(nodes, bool) or not isinstance(nodes, int) or nodes < 8):
-            raise ValueError(f"nodes = {nodes!r}: must be an integer ≥ 8")
-        _bem_problem(spec)  # reads and checks --profile / --prony files
+        raise InputError(f"--solver {solver!r} is not allowed: analytic or bem")
+
+    spec = dict.fromkeys(SPEC_KEYS)
+    spec.update(solver=solver, load=load, penetration=penetration, speed=speed)
+    if solver == "analytic":
+        spec["ratio"] = DEFAULTS["ratio"] if ratio is None else ratio
+        spec["hk"] = DEFAULTS["hk"] if hk is None else hk
+        if fields:
+            spec["field_points"] = DEFAULTS["field_points"] if nodes is None else nodes
+        return spec
+    files = dict(files or {})
+    for option, path in (("profile", profile), ("prony", prony)):
+        if path is not None and option not in files:
+            files[option] = read_input(option, path)
+    spec["ratio"] = None if prony is not None else (DEFAULTS["ratio"] if ratio is None else ratio)
+    spec["hk"] = None if profile is not None else (DEFAULTS["hk"] if hk is None else hk)
+    spec["nodes"] = nodes
+    if nodes is None:
+        if bem_adaptive():
+            spec["rtol"] = DEFAULTS["rtol"] if rtol is None else rtol
+            spec["max_nodes"] = max_nodes
+        else:
+            spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
+    for option in ("profile", "prony"):
+        if option in files:
+            info, obj = files[option]
+            spec[option] = info
+            spec["_" + option] = obj
+    return spec
 
 
-def _read(reader, name, path):
+# ------------------------------------------------------------------------------ input files
+def read_input(option, path):
+    """Read a --profile or --prony file: ``({"path", "sha256"}, parsed object)``.
+
+    The file must be a regular UTF-8 text file; the parsing is the BEM's own
+    (`bem.read_profile`, `bem.read_prony`).  Every refusal names the option and the file.
+
+    Raises
+    ------
+    InputError
+    """
+    import bem
+    where = f"--{option} {path}"
+    if path == "":
+        raise InputError(f"--{option} '' is not allowed: the name of a file")
     try:
-        return reader(path)
+        st = os.stat(path)
     except OSError as exc:
-        raise ValueError(f"{name} = {path!r}: cannot read the file ({exc.strerror})") from None
+        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(f"{where}: not a regular file ({_kind(st.st_mode)})")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
+    if b"\0" in data:
+        raise InputError(f"{where}: a binary file (NUL bytes); expected UTF-8 text")
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{where}: not UTF-8 text (byte {exc.start}); expected UTF-8 text") from None
+    reader = bem.read_profile if option == "profile" else bem.read_prony
+    try:
+        obj = reader(path)
+    except (ValueError, UnicodeDecodeError, OSError) as exc:
+        raise InputError(f"{where}: {_one_line(exc)}") from None
+    info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
+    return info, obj
+
+
+def _kind(mode):
+    if stat.S_ISDIR(mode):
+        return "a folder"
+    if stat.S_ISFIFO(mode):
+        return "a FIFO"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "not a regular file"
+
+
+def _one_line(exc):
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__
+
+
+# ------------------------------------------------------------------------------ validation
+def validate(spec):
+    """Check a spec before any work; raise InputError naming the input and what is allowed.
+
+    The accepted ranges are the roads' own (`analytic.validate`, `bem.validate`); the command
+    line adds only the limits of its own options (mesh cap, points of the fields).
+    """
+    try:
+        if spec["solver"] == "analytic":
+            import analytic
+            analytic.validate(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"],
+                              hk=spec["hk"])
+            n = spec.get("field_points")
+            if n is not None:
+                _check_int("nodes", n, *FIELD_POINTS, "points of the written fields")
+        elif spec["solver"] == "bem":
+            _validate_bem(spec)
+        else:
+            raise InputError(f"solver={spec['solver']!r} is not allowed: analytic or bem")
+    except InputError:
+        raise
+    except ValueError as exc:
+        raise InputError(_one_line(exc)) from None
+
+
+def _controls(spec):
+    if spec.get("load") is not None:
+        return {"load": spec["load"]}
+    return {"penetration": spec.get("penetration")}
+
+
+def _check_int(name, value, low, high, what):
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
+        raise InputError(f"{name}={value!r} is not allowed: an integer in [{low}, {high}] ({what})")
+
+
+def _validate_bem(spec):
+    import bem
+    low, high = bem_nodes_range()
+    for name in ("nodes", "max_nodes"):
+        if spec.get(name) is not None:
+            _check_int(name, spec[name], low, high, "panels per period of the BEM")
+    kw = dict(_controls(spec), speed=spec["speed"])
+    kw.update(_bem_problem(spec))
+    for name in ("nodes", "rtol", "max_nodes"):
+        if spec.get(name) is not None:
+            kw[name] = spec[name]
+    check = getattr(bem, "validate", None)
+    if check is not None:
+        params = inspect.signature(check).parameters
+        if not any(p.kind is p.VAR_KEYWORD for p in params.values()):
+            kw = {k: v for k, v in kw.items() if k in params}
+        check(**kw)
+        return
+    # a BEM without `validate`: the same checks as at the entry of bem.solve
+    from bem._solver import _check_real
+    if "profile" not in kw:
+        bem.Sinusoid(kw["hk"])
+    if "material" not in kw:
+        bem.Prony.standard_linear_solid(kw["ratio"])
+    _check_real("speed", kw["speed"], "a finite speed >= 0", lambda v: v >= 0.0)
+    if "load" in kw:
+        _check_real("load", kw["load"], "a finite mean pressure > 0", lambda v: v > 0.0)
+    else:
+        _check_real("penetration", kw["penetration"], "Delta/h in (0, 1]", lambda v: 0.0 < v <= 1.0)
 
 
 def _bem_problem(spec):
+    """profile=/hk= and material=/ratio= for bem.solve (parsed files travel in the spec)."""
+    kw = {}
+    if spec.get("profile") is not None:
+        obj = spec.get("_profile")
+        kw["profile"] = obj if obj is not None else read_input("profile", spec["profile"]["path"])[1]
+    else:
+        kw["hk"] = spec["hk"]
+    if spec.get("prony") is not None:
+        obj = spec.get("_prony")
+        kw["material"] = obj if obj is not None else read_input("prony", spec["prony"]["path"])[1]
+    else:
+        kw["ratio"] = spec["ratio"]
+    return kw
+
+
+# ------------------------------------------------------------------------------ the roads
+class Solved(NamedTuple):
+    """What an adapter returns: the road's JSON record, its fields, its constraint figures."""
+
+    record: dict
+    fields: Fields | None
+    constraints: dict | None  # min_pressure (over a pressure scale), min_gap (over h), mean_pressure_error
+
+
+def _plain(v):
+    """JSON-ready copy: numpy scalars as Python, tuples as lists, non-finite floats kept (checked)."""
+    if isinstance(v, dict):
+        return {str(k): _plain(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x) for x in v]
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        return float(v)
+    return v
+
+
+def _analytic(spec, want_fields, deep):
+    """Adapter of the semi-analytic road (``analytic.solve`` → record, fields, constraints)."""
+    import analytic
+    sol = analytic.solve(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"])
+    rec = _plain(sol.as_dict())
+    if "version" not in rec:  # a road from before the result protocol: complete its record
+        rec.update(version=viscosine.__version__, success=bool(sol.success),
+                   message=str(sol.message), warnings=[], separation=_plain(sol.separation),
+                   diagnostics={"nit": sol.nit, "residuals": _plain(dict(sol.residuals))},
+                   error_estimate=None, max_pressure=None, x_max_pressure=None, n_patches=None,
+                   patches=None)
+    if not sol.success:
+        return Solved(rec, None, None)
+    f = None
+    if want_fields:
+        n = spec.get("field_points") or DEFAULTS["field_points"]
+        f = sol.fields(np.arange(n) / n - 0.5)
+    c = None
+    if deep:  # graded quadrature of the fields: exact constraints, a few ms
+        chk = sol.check()
+        c = {"min_pressure": chk.get("min_pressure", chk.get("min_pressure_over_load")),
+             "min_gap": chk["min_gap"], "mean_pressure_error": chk["mean_pressure_error"]}
+    return Solved(rec, f, c)
+
+
+def _bem(spec, want_fields, deep):
+    """Adapter of the BEM road (``bem.solve`` → record, fields, constraints)."""
     import bem
-    if spec.get("prony"):
-        material = _read(bem.read_prony, "prony", spec["prony"])
-    else:
-        material = bem.Prony.standard_linear_solid(spec["ratio"])
-    profile = (_read(bem.read_profile, "profile", spec["profile"]) if spec.get("profile")
-               else bem.Sinusoid(spec["hk"]))
-    return profile, material
+    kw = dict(_controls(spec), speed=spec["speed"])
+    kw.update(_bem_problem(spec))
+    for name in ("nodes", "rtol", "max_nodes"):
+        if spec.get(name) is not None:
+            kw[name] = spec[name]
+    res = bem.solve(**kw)
+    if hasattr(res, "as_dict"):
+        rec = _plain(res.as_dict())
+    else:  # a BEM from before the result protocol: build its record here
+        rec = _bem_record(res, spec)
+    rec.setdefault("iterations", int(res.nit))
+    rec["profile_file"] = spec.get("profile")
+    rec["prony_file"] = spec.get("prony")
+    if not res.success:
+        return Solved(rec, None, None)
+    f = res.fields() if hasattr(res, "fields") else Fields(res.x_over_lambda, res.pressure,
+                                                           res.displacement, res.gap)
+    # the panel values are at hand: the constraints cost nothing on this road
+    smax = float(np.max(f.pressure)) if f.pressure.size else 0.0
+    load = rec.get("load") or float(res.load)
+    c = {"min_pressure": float(np.min(f.pressure)) / smax if smax > 0 else 0.0,
+         "min_gap": float(np.min(f.gap)),
+         "mean_pressure_error": abs(float(np.mean(f.pressure)) / load - 1.0)}
+    return Solved(rec, f if want_fields else None, c)
 
 
-def run(spec, fields=False):
-    """Solve one operating point with the solver the spec names."""
+def _bem_record(res, spec):
+    """The JSON record of a BEM result without ``as_dict`` (before the result protocol)."""
+    load = spec["load"] if spec.get("load") is not None else float(res.load)
+    rec = {"solver": "bem", "version": viscosine.__version__, "load": load, "speed": spec["speed"],
+           "ratio": spec["ratio"], "hk": spec["hk"], "nodes": int(res.nodes),
+           "iterations": int(res.nit)}
+    rec.update(_plain(res.scalars()))
+    patches = list(res.patches)
+    if len(patches) > 1:  # no single patch describes the contact
+        rec.update(ka=None, ke=None, ke_hat=None)
+    j = int(np.argmax(res.pressure))
+    rec.update(separation=float(res.separation), success=bool(res.success),
+               message=str(res.message), warnings=[],
+               max_pressure=float(res.pressure[j]), x_max_pressure=float(res.x_over_lambda[j]),
+               n_patches=len(patches) if patches else 1,
+               patches=[_plain(p.__dict__) for p in patches],
+               diagnostics=_plain({"nit": res.nit, "residuals": dict(res.residuals),
+                                   "levels": res.levels,
+                                   "memory_layer_panels": res.memory_layer_panels}),
+               error_estimate=None)
+    return rec
+
+
+ROADS = {"analytic": _analytic, "bem": _bem}
+
+
+# ------------------------------------------------------------------------------ last line of defence
+def _nonfinite(v, path=""):
+    """The first path to a non-finite number in a JSON-like value, or None."""
+    if isinstance(v, dict):
+        for k, x in v.items():
+            bad = _nonfinite(x, f"{path}.{k}" if path else str(k))
+            if bad:
+                return bad
+    elif isinstance(v, (list, tuple)):
+        for i, x in enumerate(v):
+            bad = _nonfinite(x, f"{path}[{i}]")
+            if bad:
+                return bad
+    elif isinstance(v, float) and not math.isfinite(v):
+        return f"{path} = {v!r}"
+    return None
+
+
+def check_record(rec, spec, constraints=None, fields=None):
+    """Why a record must not be printed as a result, or None when it is a valid answer.
+
+    Checks: the road says success; every number finite; 0 < Δ/h ≤ 1, 0 < ka ≤ π (or null),
+    0 < contact fraction ≤ 1, μ ≥ 0, τf ≥ 0 (to round-off); the achieved load (or Δ/h) is the one
+    asked for; and, when the constraint figures are given, σ ≥ 0, gap ≥ 0 and mean σ = load.
+    """
+    if not isinstance(rec, dict):
+        return "no record"
+    if rec.get("success") is False:
+        msg = _one_line(rec.get("message") or "the solver reports failure")
+        res = (rec.get("diagnostics") or {}).get("residuals")
+        if res and "residual" not in msg:
+            msg += "; residuals " + ", ".join(f"{k}={_fmt(v)}" for k, v in res.items())
+        return msg if msg.startswith("not converged") else f"not converged: {msg}"
+    missing = [k for k in ("load", "speed") + SCALAR_KEYS if k not in rec]
+    if missing:
+        return f"invalid result: keys {', '.join(missing)} missing"
+    bad = _nonfinite(rec)
+    if bad:
+        return f"invalid result: {bad} is not finite"
+    for k in ("load", "speed", "contact_fraction", "penetration", "tau_f", "mu", "ke_hat"):
+        if not isinstance(rec[k], (int, float)) or isinstance(rec[k], bool):
+            return f"invalid result: {k} = {rec[k]!r} is not a number"
+    one = 1.0 + RANGE_ROUNDOFF
+    if not 0.0 < rec["penetration"] <= one:
+        return f"invalid result: penetration Δ/h = {rec['penetration']!r} outside (0, 1]"
+    if rec["ka"] is not None and not 0.0 < rec["ka"] <= math.pi * one:
+        return f"invalid result: ka = {rec['ka']!r} outside (0, π]"
+    if not 0.0 < rec["contact_fraction"] <= one:
+        return f"invalid result: contact_fraction = {rec['contact_fraction']!r} outside (0, 1]"
+    for k in ("mu", "tau_f"):
+        if rec[k] < -RANGE_ROUNDOFF:
+            return f"invalid result: {k} = {rec[k]!r} < 0 (friction must resist the motion)"
+    if not rec["load"] > 0.0:
+        return f"invalid result: load = {rec['load']!r} ≤ 0"
+    for k in ("load", "penetration"):
+        asked = spec.get(k)
+        if asked is not None and abs(rec[k] / asked - 1.0) > CONTROL_MISMATCH:
+            return f"invalid result: {k} = {rec[k]!r} is not the {asked!r} asked for"
+    if constraints:
+        if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in constraints.values()):
+            return f"invalid result: constraint figures not finite ({constraints})"
+        if constraints["min_pressure"] < -CONSTRAINT_ROUNDOFF:
+            return f"invalid result: negative pressure (min σ = {constraints['min_pressure']:.3e} of the pressure scale)"
+        if constraints["min_gap"] < -CONSTRAINT_ROUNDOFF:
+            return f"invalid result: interpenetration (min gap = {constraints['min_gap']:.3e} h)"
+        if constraints["mean_pressure_error"] > CONTROL_MISMATCH:
+            return (f"invalid result: mean σ differs from the load by "
+                    f"{constraints['mean_pressure_error']:.3e} (relative)")
+    if fields is not None:
+        for name, arr in fields.as_dict().items():
+            if not np.all(np.isfinite(arr)):
+                return f"invalid result: the field {name} is not finite"
+    return None
+
+
+def _fmt(v):
+    return f"{v:.3e}" if isinstance(v, float) else repr(v)
+
+
+# ------------------------------------------------------------------------------ one point
+def run(spec, fields=False, deep=None):
+    """Solve one operating point; never raises for a failing solve.
+
+    Parameters
+    ----------
+    spec : dict
+        See the module docstring.
+    fields : bool
+        Also return the fields (``viscosine.Fields``).
+    deep : bool, optional
+        Check σ ≥ 0, gap ≥ 0 and mean σ = load on the solution itself.  Default: always on the
+        BEM (the panel values are at hand), on the semi-analytic road only with ``fields`` (its
+        graded quadrature costs about ten solves).
+
+    Returns
+    -------
+    dict
+        ``ok``; ``kind`` ("ok", "failed": could not solve, "bad_input"); ``record`` (the JSON
+        object, only when ok); ``error`` (one line); ``warnings`` (list of str); ``fields``;
+        ``spec`` (public); ``seconds``.
+    """
     t0 = time.perf_counter()
-    out = {"spec": spec, "ok": False, "record": None, "error": None, "fields": None}
-    if spec["solver"] == "analytic":
-        import analytic
-        if spec.get("load") is not None:
-            sol = analytic.solve(load=spec["load"], speed=spec["speed"], ratio=spec["ratio"],
-                                 hk=spec["hk"])
-        else:
-            sol = analytic.solve(penetration=spec["penetration"], speed=spec["speed"],
-                                 ratio=spec["ratio"], hk=spec["hk"])
-        if not sol.success:
-            out["error"] = f"{sol.message}; residuals {sol.residuals}"
-        else:
-            out["ok"] = True
-            out["record"] = sol.as_dict()
-            if fields:
-                n = spec.get("nodes") or DEFAULT_FIELD_POINTS
-                f = sol.fields(np.arange(n) / n - 0.5)
-                out["fields"] = {"x_over_lambda": f.x_over_lambda, "pressure": f.pressure,
-                                 "displacement": f.displacement, "gap": f.gap}
+    out = {"spec": public(spec), "ok": False, "kind": "failed", "record": None, "error": None,
+           "warnings": [], "fields": None, "seconds": 0.0}
+    try:
+        validate(spec)
+    except InputError as exc:
+        out.update(kind="bad_input", error=str(exc), seconds=time.perf_counter() - t0)
+        return out
+    if deep is None:
+        deep = spec["solver"] == "bem" or fields
+    try:
+        with _warnings.catch_warnings(record=True) as caught:
+            _warnings.simplefilter("always")
+            solved = ROADS[spec["solver"]](spec, fields, deep)
+        rec = solved.record
+        extra = [f"{w.category.__name__}: {w.message}" for w in caught]
+        if extra:  # numerical warnings raised during the solve belong to this point
+            rec["warnings"] = list(rec.get("warnings") or []) + extra
+        problem = check_record(rec, spec, solved.constraints, solved.fields)
+    except Exception as exc:  # any failure of the solve: this point could not be solved
+        out["error"] = f"could not solve: {type(exc).__name__}: {_one_line(exc)}"
     else:
-        import bem
-        profile, material = _bem_problem(spec)
-        nodes = spec.get("nodes") or DEFAULT_NODES
-        res = bem.solve(profile=profile, material=material, speed=spec["speed"], nodes=nodes,
-                        load=spec.get("load"), penetration=spec.get("penetration"))
-        if not res.success:
-            out["error"] = f"{res.message}; residuals {res.residuals}"
+        if problem:
+            out["error"] = problem
         else:
-            out["ok"] = True
-            # the input load is echoed; with penetration control the load is the BEM's output
-            load = spec["load"] if spec.get("load") is not None else float(res.load)
-            rec = {"solver": "bem", "load": load, "speed": spec["speed"],
-                   "ratio": spec["ratio"] if not spec.get("prony") else None, "hk": spec["hk"],
-                   "nodes": nodes, "iterations": res.nit}
-            for key in ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration",
-                        "tau_f", "mu"):
-                v = getattr(res, key)
-                rec[key] = None if v is None else (bool(v) if key == "full_contact" else float(v))
-            out["record"] = rec
+            out.update(ok=True, kind="ok", record=rec, warnings=list(rec.get("warnings") or []))
             if fields:
-                out["fields"] = {"x_over_lambda": res.x_over_lambda, "pressure": res.pressure,
-                                 "displacement": res.displacement, "gap": res.gap}
+                out["fields"] = solved.fields
     out["seconds"] = time.perf_counter() - t0
     return out
 
 
-def _run_plain(spec):
-    return run(spec)
+def run_many(specs, workers=None, scheduler=None, fields=False, chunksize=None):
+    """Yield ``run(spec)`` for each spec, in order (local processes or a Dask cluster).
+
+    A point whose worker fails is yielded as a failed run; the others are kept.
+    """
+    from . import _cluster
+    specs = list(specs) if not hasattr(specs, "__len__") else specs
+    ex = _cluster.executor(workers, scheduler)
+    if chunksize is None:
+        chunksize = max(1, min(64, len(specs) // (8 * max(1, ex.workers))))
+    fn = _run_with_fields if fields else run
+    with ex:
+        for i, value in ex.imap(fn, specs, chunksize=chunksize):
+            if isinstance(value, _cluster.Failure):
+                yield {"spec": public(specs[i]), "ok": False, "kind": "failed", "record": None,
+                       "error": f"could not solve: {value.error}", "warnings": [],
+                       "fields": None, "seconds": 0.0}
+            else:
+                yield value
 
 
-def run_many(specs, workers=1):
-    """Yield run(spec) for each spec, in order, with `workers` processes."""
-    if workers is None or workers <= 1 or len(specs) < 2:
-        for sp in specs:
-            yield run(sp)
-        return
-    from concurrent.futures import ProcessPoolExecutor
-    chunk = max(1, min(64, len(specs) // (8 * workers)))
-    with ProcessPoolExecutor(max_workers=workers) as pool:
-        yield from pool.map(_run_plain, specs, chunksize=chunk)
+def _run_with_fields(spec):
+    return run(spec, fields=True)
 
 
-def write_fields_csv(path, fields):
-    """Write the fields of conventions.md (header line, four columns) to `path`."""
-    tmp = f"{path}.part"
-    with open(tmp, "w", newline="") as fh:
-        w = csv.writer(fh)
-        cols = ["x_over_lambda", "pressure", "displacement", "gap"]
-        w.writerow(cols)
-        for row in zip(*(np.asarray(fields[c], dtype=float) for c in cols)):
-            w.writerow([repr(float(v)) for v in row])
-    os.replace(tmp, path)
+# ------------------------------------------------------------------------------ writing fields
+def fields_header(record, spec, n):
+    """The leading ``#`` lines of a fields CSV: version, operating point (the inputs as given;
+    for the BEM the mesh actually used), points, units.  ASCII only, for any CSV reader."""
+    point = {k: spec.get(k) for k in ("solver", "load", "penetration", "speed", "ratio", "hk")}
+    if spec.get("solver") == "bem":
+        point["nodes"] = record.get("nodes")
+    text = " ".join(f"{k}={v if isinstance(v, str) else repr(v)}"
+                    for k, v in point.items() if v is not None)
+    lines = [f"viscosine {record.get('version', viscosine.__version__)} fields "
+             "(python -m comparisons)",
+             f"operating point: {text}"]
+    for k in ("profile_file", "prony_file"):
+        if record.get(k):
+            lines.append(f"{k.replace('_file', '')}: {record[k]['path']} sha256={record[k]['sha256']}")
+    lines += [f"points: {n}",
+              "units: x_over_lambda = x/lambda (crest at 0); pressure = sigma (1 - nu^2)/E0; "
+              "displacement = v/h (into the body, from the mean line of the deformed surface); "
+              "gap = gap/h (0 in contact)"]
+    return lines
+
+
+def write_fields_csv(path, fields, header=()):
+    """Write the fields (header ``#`` lines, the column line, one row per point) atomically.
+
+    The file is written under a name unique to this process and moved into place, so a reader
+    never sees half a file and two writers never share a temporary file.
+    """
+    cols = ["x_over_lambda", "pressure", "displacement", "gap"]
+    data = fields.as_dict() if hasattr(fields, "as_dict") else fields
+    arrays = [np.asarray(data[c], dtype=float) for c in cols]
+    folder, base = os.path.split(os.path.abspath(path))
+    tmp = os.path.join(folder, f".{base}.{os.getpid()}.{secrets.token_hex(4)}.part")
+    try:
+        with open(tmp, "w", encoding="ascii", newline="\n") as fh:
+            for line in header:
+                fh.write(f"# {line}\n")
+            fh.write(",".join(cols) + "\n")
+            for row in zip(*arrays):
+                fh.write(",".join(repr(float(v)) for v in row) + "\n")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)

@@ -1,61 +1,168 @@
-"""A results store in which every finished operating point is its own file.
+"""A results store in which every finished operating point is its own file, and no file is trusted.
 
-Each BEM or analytic run is keyed by a hash of its spec (a plain dict of dimensionless numbers).
-Scalars go to `<key>.json`, fields (when asked for) to `<key>.npz`; both are written to a
-temporary name and renamed, so an interrupted report loses nothing it has finished and
-`--resume` never reads a half-written file.
+Each run is keyed by a hash of its spec (a plain dict of dimensionless numbers).  Scalars go to
+``<key>.json``, fields (when asked for) to ``<key>.npz``.  Both are written under a temporary name
+unique to the writing process (pid and a random suffix, so two runs on one folder never share
+one) and renamed into place, so an interrupted run loses nothing it has finished.
+
+Reading back, every file is validated before it is used (`Store.problem`): the JSON must parse,
+hold the spec it is filed under, and — for a converged run — a record that passes the runner's
+physical checks; the .npz must hold the four fields as finite 1-D arrays of one length.  A
+truncated, empty or garbage file is treated as missing: ``has`` notes it on standard error and
+the run is done again.
 """
 from __future__ import annotations
 
 import hashlib
 import json
 import os
+import secrets
+import sys
 
 import numpy as np
 
+from . import runner
+
+FIELD_NAMES = ("x_over_lambda", "pressure", "displacement", "gap")
+
+
+class StoreError(RuntimeError):
+    """A stored result is missing or cannot be trusted."""
+
 
 def key(spec):
-    text = json.dumps(spec, sort_keys=True)
+    """The file stem of a spec: a hash of its JSON form."""
+    text = json.dumps(runner.public(spec), sort_keys=True)
     return hashlib.sha1(text.encode()).hexdigest()[:16]
 
 
+def _tmp_name(path):
+    folder, base = os.path.split(path)
+    return os.path.join(folder, f".{base}.{os.getpid()}.{secrets.token_hex(4)}.part")
+
+
 class Store:
-    def __init__(self, folder):
+    """One folder of results.
+
+    Parameters
+    ----------
+    folder : str
+        Created if missing.
+    note : callable, optional
+        Receives one line for each stored file found unusable (default: standard error).
+    """
+
+    def __init__(self, folder, note=None):
         self.folder = folder
         os.makedirs(folder, exist_ok=True)
+        self._note = note or (lambda text: print(text, file=sys.stderr, flush=True))
 
     def _path(self, k, ext):
         return os.path.join(self.folder, f"{k}.{ext}")
 
-    def has(self, spec, fields=False):
-        """True when the run is stored (with its fields, if asked for and it converged)."""
+    # ---------------------------------------------------------------- reading
+    def _load(self, spec, fields):
+        """The stored document (with its fields if asked for); StoreError saying why not."""
         k = key(spec)
-        if not os.path.exists(self._path(k, "json")):
-            return False
-        if not fields:
-            return True
-        with open(self._path(k, "json")) as fh:
-            ok = json.load(fh)["ok"]
-        return not ok or os.path.exists(self._path(k, "npz"))
+        path = self._path(k, "json")
+        if not os.path.exists(path):
+            raise StoreError("missing")
+        try:
+            with open(path, encoding="utf-8") as fh:
+                doc = json.load(fh)
+        except (OSError, UnicodeDecodeError, ValueError) as exc:
+            raise StoreError(f"{os.path.basename(path)} is unreadable ({type(exc).__name__}: "
+                             f"{runner._one_line(exc)})") from None
+        why = _check_doc(doc, spec)
+        if why:
+            raise StoreError(f"{os.path.basename(path)}: {why}")
+        if fields and doc["ok"]:
+            npz = self._path(k, "npz")
+            try:
+                with np.load(npz, allow_pickle=False) as z:
+                    doc["fields"] = {n: np.array(z[n]) for n in z.files}
+            except Exception as exc:  # any unreadable archive (truncated zip, garbage, missing)
+                raise StoreError(f"{os.path.basename(npz)} is unreadable ({type(exc).__name__}: "
+                                 f"{runner._one_line(exc)})") from None
+            why = _check_fields(doc["fields"])
+            if why:
+                raise StoreError(f"{os.path.basename(npz)}: {why}")
+        return doc
 
-    def put(self, spec, out, fields=False):
-        k = key(spec)
-        if fields and out.get("fields") is not None:
-            tmp = self._path(k, "part.npz")
-            np.savez(tmp, **{n: np.asarray(v, dtype=float) for n, v in out["fields"].items()})
-            os.replace(tmp, self._path(k, "npz"))
-        doc = {"spec": spec, "ok": out["ok"], "record": out["record"], "error": out["error"],
-               "seconds": out.get("seconds")}
-        tmp = self._path(k, "part.json")
-        with open(tmp, "w") as fh:
-            json.dump(doc, fh)
-        os.replace(tmp, self._path(k, "json"))
+    def problem(self, spec, fields=False):
+        """None when the run is stored and usable (with its fields, if asked for); else why not."""
+        try:
+            self._load(spec, fields)
+        except StoreError as exc:
+            return str(exc)
+        return None
+
+    def has(self, spec, fields=False):
+        """True when the run is stored and usable; a stored but unusable file is noted."""
+        why = self.problem(spec, fields)
+        if why is not None and why != "missing":
+            self._note(f"store: {why}; running it again")
+        return why is None
 
     def get(self, spec, fields=False):
+        """The stored document ``{"spec", "ok", "record", "error", "seconds"[, "fields"]}``.
+
+        Raises
+        ------
+        StoreError
+            When it is missing or cannot be trusted.
+        """
+        return self._load(spec, fields)
+
+    # ---------------------------------------------------------------- writing
+    def put(self, spec, out, fields=False):
+        """Store one `runner.run` result (its fields too, when asked for and present)."""
         k = key(spec)
-        with open(self._path(k, "json")) as fh:
-            doc = json.load(fh)
-        if fields and doc["ok"]:
-            with np.load(self._path(k, "npz")) as z:
-                doc["fields"] = {n: z[n] for n in z.files}
-        return doc
+        if fields and out.get("fields") is not None:
+            f = out["fields"]
+            data = f.as_dict() if hasattr(f, "as_dict") else f
+            self._atomic(self._path(k, "npz"), lambda fh: np.savez(
+                fh, **{n: np.asarray(data[n], dtype=float) for n in FIELD_NAMES}), "wb")
+        doc = {"spec": runner.public(spec), "ok": bool(out["ok"]), "record": out["record"],
+               "error": out["error"], "seconds": out.get("seconds")}
+        text = json.dumps(doc, allow_nan=False)
+        self._atomic(self._path(k, "json"), lambda fh: fh.write(text), "w")
+
+    @staticmethod
+    def _atomic(path, write, mode):
+        tmp = _tmp_name(path)
+        try:
+            with open(tmp, mode, **({"encoding": "utf-8"} if "b" not in mode else {})) as fh:
+                write(fh)
+            os.replace(tmp, path)
+        finally:
+            if os.path.exists(tmp):
+                os.unlink(tmp)
+
+
+def _check_doc(doc, spec):
+    """Why a stored JSON document cannot be used for `spec`, or None."""
+    if not isinstance(doc, dict) or not {"spec", "ok", "record", "error"} <= set(doc):
+        return "not a stored result (keys spec, ok, record, error expected)"
+    if doc["spec"] != runner.public(spec):
+        return "filed under this spec but holds another one"
+    if not isinstance(doc["ok"], bool):
+        return "ok is not true/false"
+    if doc["ok"]:
+        why = runner.check_record(doc["record"], spec)
+        if why:
+            return why
+    elif not isinstance(doc["error"], str):
+        return "a failed run without its error message"
+    return None
+
+
+def _check_fields(fields):
+    if set(fields) != set(FIELD_NAMES):
+        return f"fields {sorted(fields)} instead of {list(FIELD_NAMES)}"
+    arrays = [fields[n] for n in FIELD_NAMES]
+    if any(a.ndim != 1 for a in arrays) or len({a.size for a in arrays}) != 1 or arrays[0].size == 0:
+        return "fields are not 1-D arrays of one length"
+    if not all(np.issubdtype(a.dtype, np.floating) and np.all(np.isfinite(a)) for a in arrays):
+        return "fields are not finite floats"
+    return None
