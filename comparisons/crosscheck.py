@@ -1,13 +1,21 @@
-"""Cross-solver agreement on a grid of operating points (issue 4's measured targets).
+"""Cross-solver agreement on a grid of operating points, and the tolerances it is held to.
 
 The grid covers partial contact at three speeds, the neighbourhood of the transition (1 % below
 the full-contact load), full contact, light load, and another ratio and hk.  For each point and
 mesh, `differences` returns the BEM − semi-analytic differences: relative for Δ/h and μ, absolute
-for ka, ke and kê.  `python -m comparisons crosscheck --nodes 1024 4096 ...` prints the worst of each over the grid.
+for ka, ke and kê.  The BEM mesh is always pinned (``nodes=N``), never the BEM's adaptive default,
+so that the differences are those of a known mesh.
+
+`python -m comparisons crosscheck --nodes 1024 4096 ...` prints the worst of each over the grid
+(rounded up); `python -m comparisons crosscheck --tolerances` prints `TOLERANCES`, the agreement
+the tests assert, with the measured worst case and the margin of each.
 """
 from __future__ import annotations
 
+import math
 import sys
+from decimal import ROUND_CEILING, ROUND_FLOOR, ROUND_HALF_EVEN, Context
+from typing import NamedTuple
 
 import analytic
 
@@ -30,6 +38,67 @@ GRID = [
 
 RELATIVE = ("penetration", "mu")
 ABSOLUTE = ("ka", "ke", "ke_hat")
+#: the meshes of the printed table and of TOLERANCES
+NODES = (1024, 4096, 16384, 65536)
+
+
+def round_up(x, digits=2):
+    """The shortest `digits`-digit decimal whose float is ≥ x (a printed bound never below x)."""
+    if not (math.isfinite(x) and x > 0):
+        return x
+    near = float(Context(prec=digits, rounding=ROUND_HALF_EVEN).create_decimal(x))
+    return near if near >= x else float(Context(prec=digits, rounding=ROUND_CEILING).create_decimal(x))
+
+
+def round_down(x, digits=2):
+    """The `digits`-digit decimal whose float is ≤ x (for margins: never overstated)."""
+    if not (math.isfinite(x) and x > 0):
+        return x
+    near = float(Context(prec=digits, rounding=ROUND_HALF_EVEN).create_decimal(x))
+    return near if near <= x else float(Context(prec=digits, rounding=ROUND_FLOOR).create_decimal(x))
+
+
+class Tolerance(NamedTuple):
+    """One agreement tolerance: the tests assert ``difference < tolerance`` at every grid point.
+
+    Attributes
+    ----------
+    tolerance : float
+        The bound (two significant digits, rounded up from SAFETY × measured).
+    measured : float
+        The worst difference over the grid, as measured (see MEASURED).
+    """
+
+    tolerance: float
+    measured: float
+
+    @property
+    def margin(self):
+        """tolerance / measured (≥ SAFETY by construction)."""
+        return self.tolerance / self.measured
+
+
+#: the factor between the measured worst difference and the tolerance
+SAFETY = 3.0
+#: when and how the worst differences of TOLERANCES were measured
+MEASURED = ("2026-11-23 with `python -m comparisons crosscheck` (BEM at fixed N, nested "
+            "iteration, tol 1e-10), 2-core machine")
+#: the worst difference over the grid at each N, exactly as measured
+_WORST = {
+    1024: {"penetration": 8.528551716846236e-06, "mu": 5.958116244188357e-05, "ka": 0.0016522770574982637, "ke": 0.0016320141681526457, "ke_hat": 7.138285011837331e-06},
+    4096: {"penetration": 5.985170432069141e-07, "mu": 4.6326801927437185e-06, "ka": 0.0001734125614658577, "ke": 0.0001706458295560459, "ke_hat": 6.813900482599555e-07},
+    16384: {"penetration": 3.892047679593101e-08, "mu": 1.3769347324566757e-07, "ka": 1.769244546512283e-05, "ke": 1.617128897432596e-05, "ke_hat": 1.1315187495308798e-08},
+    65536: {"penetration": 5.562038979920378e-09, "mu": 2.5452573548134402e-08, "ka": 1.4919580797467802e-06, "ke": 1.2315053105824147e-06, "ke_hat": 1.1519893788891622e-09},
+}
+
+
+def _tolerances(worst):
+    return {n: {k: Tolerance(round_up(SAFETY * v), v) for k, v in row.items()}
+            for n, row in worst.items()}
+
+
+#: N → quantity → Tolerance (relative for penetration and mu, absolute for ka, ke, ke_hat)
+TOLERANCES = _tolerances(_WORST)
 
 
 def _load(load, speed, ratio, hk):
@@ -83,15 +152,43 @@ def table(nodes_list, run=runner.run):
         print(f"crosscheck: N = {n}", file=sys.stderr)
         r = differences(n, run=run)
         w = worst(r)
-        rows.append([str(n)] + [f"{w.get(k, float('nan')):.2e}" for k in RELATIVE + ABSOLUTE]
+        rows.append([str(n)] + [f"{round_up(w[k], 3):.2e}" if k in w else "nan" for k in RELATIVE + ABSOLUTE]
                     + [str(sum(x[3] is None for x in r))])
     return head, rows
 
 
 def print_table(nodes_list):
+    """Print the worst differences (rounded up) for each mesh; exit status 1 if a point failed."""
     head, rows = table(nodes_list)
     print("| " + " | ".join(head) + " |")
     print("|" + "---|" * len(head))
     for r in rows:
         print("| " + " | ".join(r) + " |", flush=True)
     return 1 if any(r[-1] != "0" for r in rows) else 0
+
+
+def tolerance_rows():
+    """(header, rows) of TOLERANCES: N, quantity, tolerance, measured worst (rounded up), margin
+    (rounded down)."""
+    head = ["N", "quantity", "tolerance", "measured worst", "margin"]
+    rows = []
+    for n, row in TOLERANCES.items():
+        for k in RELATIVE + ABSOLUTE:
+            t = row[k]
+            kind = "relative" if k in RELATIVE else "absolute"
+            rows.append([str(n), f"{k} ({kind})", f"{t.tolerance:.1e}",
+                         f"{round_up(t.measured):.1e}", f"{round_down(t.margin):.1f}×"])
+    return head, rows
+
+
+def print_tolerances():
+    """Print TOLERANCES as a Markdown table (what the tests assert; nothing is run)."""
+    head, rows = tolerance_rows()
+    print(f"Agreement tolerances of the cross-solver tests: |BEM − semi-analytic| < tolerance at "
+          f"every grid point, the BEM mesh pinned to N. Tolerance = {SAFETY:g} × the measured "
+          f"worst, rounded up to two digits; measured {MEASURED}.")
+    print()
+    print("| " + " | ".join(head) + " |")
+    print("|" + "---|" * len(head))
+    for r in rows:
+        print("| " + " | ".join(r) + " |")
