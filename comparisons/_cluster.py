@@ -222,7 +222,8 @@ class DaskExecutor(Executor):
         return self._client.submit(_call_chunk, fn, chunk, pure=False)
 
     def _wait_first(self, futures):
-        return self._distributed.wait(futures, return_when="FIRST_COMPLETED").done
+        with self._client.as_current():  # wait() uses the current client, not a global one
+            return self._distributed.wait(futures, return_when="FIRST_COMPLETED").done
 
     def close(self):
         self._client.close()
