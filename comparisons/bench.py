@@ -3,7 +3,9 @@
 `python -m comparisons bench` times a sweep of the semi-analytic solver through the command line
 (a fresh `python -m comparisons sweep` process, as a user runs it) and in process; `--bem` adds the
 BEM tables (elastic limits, Appendix B, iterations, speed and memory), `--bem-only` runs those
-alone.
+alone; `--cluster` times one BEM sweep (default 2000 points at N = 4096) in this process, in two
+local processes and on a two-worker local Dask cluster, and checks that all three return the same
+records in the same order.  Every table says how loaded the machine was (load average).
 """
 from __future__ import annotations
 
@@ -58,11 +60,78 @@ def analytic_sweep(points=1000):
     return 0 if lines == n else 1
 
 
+def _load_average():
+    try:
+        one, five, fifteen = os.getloadavg()
+    except OSError:  # pragma: no cover - platforms without it
+        return "load average unavailable"
+    return f"load average {one:.2f} {five:.2f} {fifteen:.2f} on {os.cpu_count()} cores"
+
+
+def cluster_specs(points=2000, nodes=4096):
+    """A BEM sweep of `points` points at a pinned mesh: 40 loads × speeds, log-spaced."""
+    from . import runner
+    nload = min(40, points)
+    nspeed = max(1, points // nload)
+    loads = np.logspace(-2, 0, nload)               # partial and full contact at ratio 3, hk 1
+    speeds = np.logspace(-2, 2, nspeed)
+    return [runner.point_spec("bem", float(s), load=float(p), nodes=nodes)
+            for p in loads for s in speeds]
+
+
+def cluster_sweep(points=2000, nodes=4096):
+    """Print the wall time of one BEM sweep in 1 and 2 local processes and on a 2-worker local
+    Dask cluster (one thread per worker); 0 when the three return identical records in order."""
+    from . import _cluster, runner
+    specs = cluster_specs(points, nodes)
+    print(f"# BEM sweep: {len(specs)} points (40 loads log-spaced 1e-2…1, speeds 1e-2…1e2), "
+          f"N = {nodes} pinned, ratio 3, hk 1; {_load_average()} before", file=sys.stderr)
+    runner.run(specs[0])                             # numba cache and imports, outside the clock
+    rows, results = [], {}
+
+    def timed(label, workers=None, scheduler=None):
+        print(f"# {label} …", file=sys.stderr, flush=True)
+        t0 = time.perf_counter()
+        outs = list(runner.run_many(specs, workers=workers, scheduler=scheduler))
+        dt = time.perf_counter() - t0
+        results[label] = [o["record"] if o["ok"] else o["error"] for o in outs]
+        rows.append((label, len(outs), dt, sum(not o["ok"] for o in outs)))
+
+    timed("local, 1 process")
+    timed("local, 2 processes", workers=2)
+    try:
+        from distributed import LocalCluster
+    except ImportError:
+        print(f"# no Dask cluster: {_cluster.INSTALL_HINT}", file=sys.stderr)
+    else:
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                          dashboard_address=None) as cl:
+            t0 = time.perf_counter()
+            with _cluster.executor(scheduler=cl.scheduler_address) as ex:
+                list(ex.imap(runner.run, specs[:2]))  # workers warm (imports, numba cache)
+            warm = time.perf_counter() - t0
+            timed("Dask LocalCluster, 2 workers", scheduler=cl.scheduler_address)
+    print(f"| what | points | wall time [s] | per point [ms] | failed |")
+    print("| --- | ---: | ---: | ---: | ---: |")
+    for label, n, dt, nf in rows:
+        print(f"| {label} | {n} | {dt:.1f} | {1e3 * dt / n:.1f} | {nf} |")
+    print(f"\n{_load_average()} after; machine: {os.cpu_count()} cores"
+          + (f"; Dask workers warmed in {warm:.1f} s (not counted)" if len(rows) == 3 else ""))
+    same = all(r == results["local, 1 process"] for r in results.values())
+    print(f"identical records, in order, in every mode: {'yes' if same else 'NO'}")
+    return 0 if same else 1
+
+
 def main(args):
+    """`python -m comparisons bench`: the defaults of its options are applied here."""
+    if getattr(args, "cluster", False):
+        return cluster_sweep(2000 if args.points is None else args.points)
+    points = 1000 if args.points is None else args.points
+    max_log2n = 20 if args.max_log2n is None else args.max_log2n
     rc = 0
     if not getattr(args, "bem_only", False):
-        rc |= analytic_sweep(args.points)
+        rc |= analytic_sweep(points)
     if getattr(args, "bem", False) or getattr(args, "bem_only", False):
         from . import _bench_bem
-        rc |= _bench_bem.main(["--big-exponent", str(args.max_log2n)])
+        rc |= _bench_bem.main(["--big-exponent", str(max_log2n)])
     return rc
