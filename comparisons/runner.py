@@ -459,10 +459,18 @@ def check_record(rec, spec, constraints=None, fields=None):
         return f"invalid result: keys {', '.join(missing)} missing"
     bad = _nonfinite(rec)
     if bad:
-        return f"invalid result: {bad} is not finite"
-    for k in ("load", "speed", "contact_fraction", "penetration", "tau_f", "mu", "ke_hat"):
+        return f"invalid result: {bad} is not a finite number"
+    for k in ("load", "speed", "contact_fraction", "penetration", "tau_f", "mu"):
         if not isinstance(rec[k], (int, float)) or isinstance(rec[k], bool):
-            return f"invalid result: {k} = {rec[k]!r} is not a number"
+            return f"invalid result: {k} = {_json(rec[k])} is not a finite number"
+    # null is a statement: ka, kê with several patches, ke also in full contact; else a number
+    several = isinstance(rec.get("n_patches"), int) and rec["n_patches"] > 1
+    for k in ("ka", "ke", "ke_hat"):
+        v = rec[k]
+        if v is None and not several and not (k == "ke" and rec["full_contact"]):
+            return f"invalid result: {k} = null with a single contact patch"
+        if v is not None and (not isinstance(v, (int, float)) or isinstance(v, bool)):
+            return f"invalid result: {k} = {_json(v)} is not a finite number"
     one = 1.0 + RANGE_ROUNDOFF
     if not 0.0 < rec["penetration"] <= one:
         return f"invalid result: penetration Δ/h = {rec['penetration']!r} outside (0, 1]"
@@ -494,6 +502,10 @@ def check_record(rec, spec, constraints=None, fields=None):
             if not np.all(np.isfinite(arr)):
                 return f"invalid result: the field {name} is not finite"
     return None
+
+
+def _json(v):
+    return "null" if v is None else repr(v)
 
 
 def _fmt(v):

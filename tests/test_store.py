@@ -106,7 +106,7 @@ def test_non_finite_numbers_in_a_record_are_not_trusted(store):
     path = _path(store, SPEC, "json")
     text = open(path).read().replace('"mu": ', '"mu": NaN, "mu_was": ', 1)
     open(path, "w").write(text)
-    assert "not finite" in store.problem(SPEC)
+    assert "not a finite number" in store.problem(SPEC)
 
 
 def test_temporary_names_are_unique_per_process_and_nothing_is_left(tmp_path, solved, monkeypatch):
