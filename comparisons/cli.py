@@ -75,25 +75,21 @@ class _Once(argparse.Action):
         setattr(namespace, self.dest, values)
 
 
-def _float(option):
-    def conv(text):
-        try:
-            return float(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
-    return conv
+def _number(text):
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
 
 
-def _int(option):
-    def conv(text):
-        try:
-            return int(text)
-        except ValueError:
-            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
-    return conv
+def _integer(text):
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
 
 
-def log_range(text, option="--value"):
+def log_range(text):
     """Values of one sweep token: a number, or START:STOP:COUNT (COUNT log-spaced values from
     START to STOP, both included exactly).
 
@@ -102,12 +98,12 @@ def log_range(text, option="--value"):
     argparse.ArgumentTypeError
     """
     if ":" not in text:
-        return [_float(option)(text)]
+        return [_number(text)]
     parts = text.split(":")
     bad = argparse.ArgumentTypeError
     if len(parts) != 3:
         raise bad(f"{text!r}: a log range is START:STOP:COUNT")
-    a, b = (_float(option)(p) for p in parts[:2])
+    a, b = (_number(p) for p in parts[:2])
     try:
         k = int(parts[2])
     except ValueError:
@@ -125,12 +121,6 @@ def log_range(text, option="--value"):
     return vals
 
 
-def _values(option):
-    def conv(text):
-        return log_range(text, option)
-    return conv
-
-
 # ------------------------------------------------------------------------------ parsers
 def _solver_options(p, several):
     """Options shared by point and sweep; `several`: sweep's lists and ranges of values."""
@@ -138,30 +128,30 @@ def _solver_options(p, several):
     g = p.add_mutually_exclusive_group(required=True)
     if several:
         rng = " (values, or log ranges START:STOP:COUNT)"
-        g.add_argument("--load", type=_values("--load"), nargs="+", action=_Once, metavar="P",
+        g.add_argument("--load", type=log_range, nargs="+", action=_Once, metavar="P",
                        help="p̃∞ = p∞(1 − ν²)/E0 > 0" + rng)
-        g.add_argument("--penetration", type=_values("--penetration"), nargs="+", action=_Once,
+        g.add_argument("--penetration", type=log_range, nargs="+", action=_Once,
                        metavar="D", help="Δ/h in (0, 1]" + rng)
-        p.add_argument("--speed", type=_values("--speed"), nargs="+", required=True,
+        p.add_argument("--speed", type=log_range, nargs="+", required=True,
                        action=_Once, metavar="S", help="V/V0 = Vτk ≥ 0" + rng)
     else:
-        g.add_argument("--load", type=_float("--load"), action=_Once, metavar="P",
+        g.add_argument("--load", type=_number, action=_Once, metavar="P",
                        help="p̃∞ = p∞(1 − ν²)/E0 > 0")
-        g.add_argument("--penetration", type=_float("--penetration"), action=_Once, metavar="D",
+        g.add_argument("--penetration", type=_number, action=_Once, metavar="D",
                        help="Δ/h in (0, 1]; the load is then an output")
-        p.add_argument("--speed", type=_float("--speed"), required=True, action=_Once,
+        p.add_argument("--speed", type=_number, required=True, action=_Once,
                        metavar="S", help="V/V0 = Vτk ≥ 0")
-    p.add_argument("--ratio", type=_float("--ratio"), action=_Once, metavar="R",
+    p.add_argument("--ratio", type=_number, action=_Once, metavar="R",
                    help="E∞/E0 (default 3); not with --prony")
-    p.add_argument("--hk", type=_float("--hk"), action=_Once, metavar="H",
+    p.add_argument("--hk", type=_number, action=_Once, metavar="H",
                    help="h k (default 1); not with --profile")
-    p.add_argument("--nodes", type=_int("--nodes"), action=_Once, metavar="N",
+    p.add_argument("--nodes", type=_integer, action=_Once, metavar="N",
                    help="BEM: a fixed mesh of N panels per period (default: adaptive); analytic: "
                         "points of --fields (default 1024), only with --fields")
-    p.add_argument("--rtol", type=_float("--rtol"), action=_Once, metavar="T",
+    p.add_argument("--rtol", type=_number, action=_Once, metavar="T",
                    help="BEM without --nodes: refine until every estimated error is below T "
                         f"(default {runner.DEFAULTS['rtol']:g})")
-    p.add_argument("--max-nodes", type=_int("--max-nodes"), action=_Once, metavar="M",
+    p.add_argument("--max-nodes", type=_integer, action=_Once, metavar="M",
                    help="BEM without --nodes: the finest mesh the refinement may reach")
     p.add_argument("--profile", action=_Once, metavar="FILE",
                    help="BEM only: periodic profile file (bem.read_profile); replaces the sinusoid")
@@ -172,7 +162,7 @@ def _solver_options(p, several):
 
 def _parallel_options(p, what):
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--workers", type=_int("--workers"), action=_Once, metavar="W",
+    g.add_argument("--workers", type=_integer, action=_Once, metavar="W",
                    help=f"local processes ({what})")
     g.add_argument("--scheduler", action=_Once, metavar="ADDRESS",
                    help="run on the Dask distributed cluster of this scheduler (e.g. "
@@ -211,7 +201,7 @@ def add_report_parser(sub):
 
 def add_bench_parser(sub):
     p = sub.add_parser("bench", help="benchmarks that print figures (speed, iterations, memory)")
-    p.add_argument("--points", type=_int("--points"), action=_Once, metavar="N",
+    p.add_argument("--points", type=_integer, action=_Once, metavar="N",
                    help="points of the swept benchmark (default 1000; 2000 with --cluster)")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--bem", action="store_true", help="also run the BEM benchmark tables")
@@ -219,7 +209,7 @@ def add_bench_parser(sub):
     g.add_argument("--cluster", action="store_true",
                    help="a BEM sweep at N = 4096 in 1 and 2 local processes and on a 2-worker "
                         "local Dask cluster")
-    p.add_argument("--max-log2n", type=_int("--max-log2n"), action=_Once, metavar="K",
+    p.add_argument("--max-log2n", type=_integer, action=_Once, metavar="K",
                    help="largest BEM mesh 2^K of the BEM speed/memory table (default 20)")
     p.set_defaults(run=_cmd_bench)
 
@@ -228,7 +218,7 @@ def add_crosscheck_parser(sub):
     p = sub.add_parser("crosscheck",
                        help="BEM − semi-analytic differences on the grid of operating points")
     g = p.add_mutually_exclusive_group()
-    g.add_argument("--nodes", type=_int("--nodes"), nargs="+", action=_Once, metavar="N",
+    g.add_argument("--nodes", type=_integer, nargs="+", action=_Once, metavar="N",
                    help="BEM meshes (default 1024 4096 16384 65536)")
     g.add_argument("--tolerances", action="store_true",
                    help="print the agreement tolerances the tests use (Markdown), run nothing")
