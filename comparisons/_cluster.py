@@ -121,14 +121,14 @@ class Executor:
     def _recover(self, fut, exc) -> None:
         """Called after a task failed as a whole (e.g. replace a broken process pool)."""
 
-    def close(self) -> None:
-        """Release processes and connections."""
+    def close(self, wait: bool = True) -> None:
+        """Release processes and connections (without waiting for running items if not wait)."""
 
     def __enter__(self):
         return self
 
-    def __exit__(self, *exc):
-        self.close()
+    def __exit__(self, exc_type, *exc):
+        self.close(wait=exc_type is None)  # on Ctrl-C or an error, do not wait for the workers
         return False
 
 
@@ -196,9 +196,9 @@ class ProcessExecutor(Executor):
             self._pool.shutdown(wait=False, cancel_futures=True)
             self._pool = None
 
-    def close(self):
+    def close(self, wait=True):
         if self._pool is not None:
-            self._pool.shutdown(wait=True, cancel_futures=True)
+            self._pool.shutdown(wait=wait, cancel_futures=True)
             self._pool = None
 
 
@@ -225,7 +225,7 @@ class DaskExecutor(Executor):
         with self._client.as_current():  # wait() uses the current client, not a global one
             return self._distributed.wait(futures, return_when="FIRST_COMPLETED").done
 
-    def close(self):
+    def close(self, wait=True):
         self._client.close()
 
 

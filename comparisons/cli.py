@@ -438,9 +438,10 @@ def _cmd_sweep(args):
                 _stderr(f"{where}: {out['error']}")
             now = time.monotonic()
             if now - last > 2.0 or (i + 1 == total and now - t0 > 2.0):
-                left = (now - t0) / (i + 1) * (total - i - 1)
-                _stderr(f"sweep: {i + 1}/{total} points, {failed} failed, {now - t0:.1f} s "
-                        f"(about {left:.0f} s left)")
+                eta = ""
+                if 10 <= i + 1 < total:  # an estimate only once a few points are in
+                    eta = f" (about {(now - t0) / (i + 1) * (total - i - 1):.0f} s left)"
+                _stderr(f"sweep: {i + 1}/{total} points, {failed} failed, {now - t0:.1f} s{eta}")
                 last = now
     if failed:
         _stderr(f"sweep: {failed} of {total} points could not be solved")
