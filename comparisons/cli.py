@@ -17,7 +17,8 @@ outside what is supported, refused before any work.  Either way one line per pro
 error, never a traceback.
 
 Each subcommand is one ``add_*_parser`` function and one ``_cmd_*`` function; `SUBCOMMANDS`
-lists the parser functions in the order of ``--help``.
+lists the parser functions in the order of ``--help``, and a subcommand in a module of its own
+(``add_parser(sub)``, ``main(args)``) is one line there: ``module_subcommand("name")``.
 """
 from __future__ import annotations
 
@@ -225,7 +226,21 @@ def add_crosscheck_parser(sub):
     p.set_defaults(run=_cmd_crosscheck)
 
 
-#: the subcommands, in the order of --help (one line per subcommand)
+def module_subcommand(name):
+    """Register a subcommand that lives in ``comparisons/<name>.py``, which provides
+    ``add_parser(sub)`` (returning its parser) and ``main(args)`` (returning the exit status)."""
+    def add(sub):
+        import importlib
+        module = importlib.import_module(f"{__package__}.{name}")
+        p = module.add_parser(sub)
+        if p is not None:
+            p.set_defaults(run=module.main)
+    add.__name__ = f"add_{name}_parser"
+    return add
+
+
+#: the subcommands, in the order of --help (one line per subcommand; a subcommand in a module
+#: of its own is ``module_subcommand("name")``)
 SUBCOMMANDS = [add_point_parser, add_sweep_parser, add_report_parser, add_crosscheck_parser,
                add_bench_parser]
 
@@ -498,7 +513,11 @@ def main(argv=None):
             hint = (" (point takes one value of --load/--penetration/--speed; use sweep for "
                     "several)" if args.command == "point" else "")
             raise BadInput(f"unrecognized arguments: {' '.join(extra)}{hint}")
-        return args.run(args)
+        run = getattr(args, "run", None)
+        if run is None:  # a module's parser that did not say what runs it
+            import importlib
+            run = importlib.import_module(f"{__package__}.{args.command}").main
+        return run(args)
     except BadInput as exc:  # Failed too
         prog = exc.prog or " ".join([parser.prog] + ([args.command] if args else []))
         _stderr(f"{prog}: {_first_line(exc)}")

@@ -155,3 +155,21 @@ def test_every_subcommand_has_help(capsys):
     for name in ("point", "sweep", "report", "crosscheck", "bench"):
         assert cli.main([name, "--help"]) == 0
         assert "usage: python -m comparisons " + name in capsys.readouterr().out
+
+
+def test_a_subcommand_in_its_own_module_registers_with_one_line(monkeypatch, capsys):
+    import sys
+    import types
+    mod = types.ModuleType("comparisons.demo")
+
+    def add_parser(sub):
+        p = sub.add_parser("demo", help="a demonstration")
+        p.add_argument("--x", type=int, default=1)
+        return p
+    mod.add_parser = add_parser
+    mod.main = lambda args: 0 if args.x == 5 else 1
+    monkeypatch.setitem(sys.modules, "comparisons.demo", mod)
+    monkeypatch.setattr(cli, "SUBCOMMANDS", cli.SUBCOMMANDS + [cli.module_subcommand("demo")])
+    assert cli.main(["demo", "--x", "5"]) == 0
+    assert cli.main(["demo", "--y"]) == 2
+    assert "unrecognized arguments: --y" in capsys.readouterr().err
