@@ -494,11 +494,8 @@ def _cmd_crosscheck(args):
         crosscheck.print_tolerances()
         return EXIT_OK
     nodes = args.nodes or list(crosscheck.NODES)
-    low, high = runner.bem_nodes_range()
-    for n in nodes:
-        if not low <= n <= high:
-            raise BadInput(f"--nodes {n} is not allowed: an integer in [{low}, {high}] "
-                           "(panels per period of the BEM)")
+    for n in nodes:  # the same check as point --solver bem --nodes N, before any work
+        _validate(crosscheck.specs(n, crosscheck.GRID[:1])[0])
     return crosscheck.print_table(nodes)
 
 
