@@ -453,7 +453,7 @@ def check_record(rec, spec, constraints=None, fields=None):
         res = (rec.get("diagnostics") or {}).get("residuals")
         if res and "residual" not in msg:
             msg += "; residuals " + ", ".join(f"{k}={_fmt(v)}" for k, v in res.items())
-        return msg if msg.startswith("not converged") else f"not converged: {msg}"
+        return msg  # the road's own words: not converged, accuracy target not reached, ...
     missing = [k for k in ("load", "speed") + SCALAR_KEYS if k not in rec]
     if missing:
         return f"invalid result: keys {', '.join(missing)} missing"
