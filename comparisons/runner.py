@@ -37,7 +37,8 @@ import numpy as np
 import viscosine
 from viscosine import Fields
 
-#: every default of the command line, applied in `resolve` only
+#: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
+#: read from bem.solve when it has one, so that the two cannot drift apart)
 DEFAULTS = {"ratio": 3.0, "hk": 1.0, "rtol": 1e-6, "field_points": 1024,
             "nodes_without_adaptive": 4096}
 #: BEM meshes refused beyond this when the BEM does not export its own cap (bem.ACCEPTED)
@@ -70,6 +71,14 @@ def bem_adaptive():
     return "rtol" in _bem_solve_parameters()
 
 
+def bem_default_rtol():
+    """The accuracy the adaptive BEM aims at by default (its own default of ``rtol``)."""
+    p = _bem_solve_parameters().get("rtol")
+    if p is not None and isinstance(p.default, float):
+        return p.default
+    return DEFAULTS["rtol"]
+
+
 def bem_nodes_range():
     """(smallest, largest) N the BEM accepts: its own ``ACCEPTED['nodes']`` when exported."""
     import bem
@@ -88,7 +97,7 @@ def point_spec(solver, speed, load=None, penetration=None, ratio=3.0, hk=1.0, no
         spec["nodes"] = nodes
         if nodes is None:
             if bem_adaptive():
-                spec["rtol"] = DEFAULTS["rtol"]
+                spec["rtol"] = bem_default_rtol()
             else:
                 spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
     return spec
@@ -164,7 +173,7 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     spec["nodes"] = nodes
     if nodes is None:
         if bem_adaptive():
-            spec["rtol"] = DEFAULTS["rtol"] if rtol is None else rtol
+            spec["rtol"] = bem_default_rtol() if rtol is None else rtol
             spec["max_nodes"] = max_nodes
         else:
             spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
