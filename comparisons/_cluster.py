@@ -51,6 +51,7 @@ class Executor:
     """
 
     workers = 1
+    eager = False  # True when _submit computes the result itself (no parallelism)
 
     def imap(self, fn: Callable, items: Iterable, *, chunksize: int = 1,
              ordered: bool = True) -> Iterator[tuple[int, Any]]:
@@ -69,6 +70,8 @@ class Executor:
         """
         chunksize = max(1, int(chunksize))
         window = 4 * max(1, self.workers)            # chunks in flight
+        if self.eager:  # evaluated at submission: one item at a time, so each shows at once
+            chunksize = window = 1
         source = enumerate(items)
         retry = collections.deque()                  # (index, item) to re-run alone
         pending = {}                                 # future -> (list of (index, item), alone)
@@ -152,6 +155,8 @@ class _Done:
 
 class SerialExecutor(Executor):
     """Everything in this process, one item after the other."""
+
+    eager = True
 
     def _submit(self, fn, chunk):
         return _Done(_call_chunk(fn, chunk))

@@ -120,3 +120,13 @@ def test_without_distributed_the_message_names_the_extra(monkeypatch, capsys):
 def test_an_unreachable_scheduler_is_a_cluster_error():
     with pytest.raises(_cluster.ClusterError, match="cannot connect"):
         _cluster.DaskExecutor("tcp://127.0.0.1:9", timeout=0.5)
+
+
+def test_in_this_process_each_point_comes_out_as_soon_as_it_is_done():
+    calls = []
+
+    def f(x):
+        calls.append(x)
+        return x
+    it = _cluster.SerialExecutor().imap(f, range(100), chunksize=64)
+    assert next(it) == (0, 0) and calls == [0]  # nothing computed ahead of the output
