@@ -606,7 +606,8 @@ def fields_header(record, spec, n):
     for the BEM the mesh actually used), points, units.  ASCII only, for any CSV reader."""
     point = {k: spec.get(k) for k in ("solver", "load", "penetration", "speed", "ratio", "hk")}
     if spec.get("solver") == "bem":
-        point["nodes"] = record.get("nodes")
+        point["nodes"] = record.get("nodes")       # the mesh used (after any refinement)
+        point["rtol"] = spec.get("rtol")            # set only when the mesh was adaptive
     text = " ".join(f"{k}={v if isinstance(v, str) else repr(v)}"
                     for k, v in point.items() if v is not None)
     lines = [f"viscosine {record.get('version', viscosine.__version__)} fields "
