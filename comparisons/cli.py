@@ -507,8 +507,9 @@ def main(argv=None):
     try:
         args, extra = parser.parse_known_args(argv)
         if extra:
+            stray_value = not extra[0].startswith("-") or re.fullmatch(r"-[\d.]\S*", extra[0])
             hint = (" (point takes one value of --load/--penetration/--speed; use sweep for "
-                    "several)" if args.command == "point" else "")
+                    "several)" if args.command == "point" and stray_value else "")
             raise BadInput(f"unrecognized arguments: {' '.join(extra)}{hint}")
         run = getattr(args, "run", None)
         if run is None:  # a module's parser that did not say what runs it
