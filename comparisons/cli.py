@@ -9,6 +9,7 @@
     python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
     python -m comparisons bench [--points N] [--bem | --bem-only | --cluster] [--max-log2n K]
+    python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
 
 `point` prints one JSON object; `sweep` one per line, in order (loads outer, speeds inner); a
 value of a sweep may be a log range START:STOP:COUNT.  Exit status: 0 every result printed;
@@ -231,8 +232,19 @@ def module_subcommand(name):
     ``add_parser(sub)`` (returning its parser) and ``main(args)`` (returning the exit status)."""
     def add(sub):
         import importlib
-        module = importlib.import_module(f"{__package__}.{name}")
-        p = module.add_parser(sub)
+        try:
+            module = importlib.import_module(f"{__package__}.{name}")
+            p = module.add_parser(sub)
+        except Exception as exc:  # a broken module must not take the other subcommands down
+            why = f"{type(exc).__name__}: {runner._one_line(exc)}"
+
+            def unavailable(args):
+                raise Failed(f"unavailable ({why})")
+            stub = sub.add_parser(name, help=f"(unavailable: {why})", add_help=False,
+                                  prefix_chars="\0")
+            stub.add_argument("rest", nargs=argparse.REMAINDER)  # whatever follows: same answer
+            stub.set_defaults(run=unavailable)
+            return
         if p is not None:
             p.set_defaults(run=module.main)
     add.__name__ = f"add_{name}_parser"
@@ -242,7 +254,7 @@ def module_subcommand(name):
 #: the subcommands, in the order of --help (one line per subcommand; a subcommand in a module
 #: of its own is ``module_subcommand("name")``)
 SUBCOMMANDS = [add_point_parser, add_sweep_parser, add_report_parser, add_crosscheck_parser,
-               add_bench_parser]
+               add_bench_parser, module_subcommand("suite"), module_subcommand("verify")]
 
 
 def build_parser():
@@ -252,9 +264,6 @@ def build_parser():
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
     for add in SUBCOMMANDS:
         add(sub)
-    from . import suite, verify  # the benchmark suite and verify register their own options
-    for module in (suite, verify):
-        module.add_parser(sub).set_defaults(run=module.main)
     return parser
 
 
@@ -502,9 +511,10 @@ def _cmd_crosscheck(args):
 # ------------------------------------------------------------------------------ main
 def main(argv=None):
     """Run the command line; return the exit status (never raises, never prints a traceback)."""
-    parser = build_parser()
+    parser = _Parser(prog="python -m comparisons")  # for the messages, until the real one exists
     args = None
     try:
+        parser = build_parser()
         args, extra = parser.parse_known_args(argv)
         if extra:
             stray_value = not extra[0].startswith("-") or re.fullmatch(r"-[\d.]\S*", extra[0])

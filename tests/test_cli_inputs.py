@@ -152,7 +152,7 @@ def test_help_of_point_matches_what_point_accepts(capsys):
 
 
 def test_every_subcommand_has_help(capsys):
-    for name in ("point", "sweep", "report", "crosscheck", "bench"):
+    for name in ("point", "sweep", "report", "crosscheck", "bench", "suite", "verify"):
         assert cli.main([name, "--help"]) == 0
         assert "usage: python -m comparisons " + name in capsys.readouterr().out
 
@@ -173,3 +173,21 @@ def test_a_subcommand_in_its_own_module_registers_with_one_line(monkeypatch, cap
     assert cli.main(["demo", "--x", "5"]) == 0
     assert cli.main(["demo", "--y"]) == 2
     assert "unrecognized arguments: --y" in capsys.readouterr().err
+
+
+def test_a_broken_subcommand_module_does_not_take_the_others_down(monkeypatch, capsys):
+    def broken(sub):
+        raise ImportError("no module named 'something'")
+    import types
+    import sys
+    mod = types.ModuleType("comparisons.broken")
+    mod.add_parser = broken
+    mod.main = lambda args: 0
+    monkeypatch.setitem(sys.modules, "comparisons.broken", mod)
+    monkeypatch.setattr(cli, "SUBCOMMANDS", cli.SUBCOMMANDS + [cli.module_subcommand("broken")])
+    assert cli.main(["point", "--solver", "analytic", "--load", "0.3", "--speed", "1"]) == 0
+    capsys.readouterr()
+    assert cli.main(["broken", "--anything"]) == 1
+    err = capsys.readouterr().err
+    assert err.strip() == ("python -m comparisons broken: unavailable (ImportError: no module "
+                           "named 'something')")
