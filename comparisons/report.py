@@ -9,10 +9,7 @@ recompute what is done.  Progress goes to standard error.
 """
 from __future__ import annotations
 
-import base64
 import datetime
-import html
-import io
 import math
 import os
 import platform
@@ -24,7 +21,7 @@ import numpy as np
 
 import analytic
 
-from . import crosscheck, runner
+from . import _html, crosscheck, runner
 from .store import Store
 
 RATIO, HK = 3.0, 1.0
@@ -455,6 +452,9 @@ def plot_convergence(fig, conv):
 # ---------------------------------------------------------------------------- writing
 @dataclass
 class Doc:
+    """The report as a list of parts, written out as Markdown; the HTML page is that Markdown
+    rendered by `comparisons._html` (one text, two renderings: report.html is report.md)."""
+
     parts: list = field(default_factory=list)  # ("h", level, text) | ("p", text) | ("table", head, rows) | ("img", file, caption)
 
     def h(self, level, text):
@@ -477,36 +477,14 @@ class Doc:
             elif part[0] == "p":
                 out.append(part[1] + "\n")
             elif part[0] == "table":
-                out.append("| " + " | ".join(part[1]) + " |")
-                out.append("|" + "---|" * len(part[1]))
-                out.extend("| " + " | ".join(r) + " |" for r in part[2])
-                out.append("")
+                out.append(_html.table(part[1], part[2]))  # escapes a '|' inside a cell
             else:
                 out.append(f"![{part[2]}]({part[1]})\n")
         return "\n".join(out)
 
     def html(self, folder):
-        body = []
-        for part in self.parts:
-            if part[0] == "h":
-                body.append(f"<h{part[1]}>{html.escape(part[2])}</h{part[1]}>")
-            elif part[0] == "p":
-                body.append(f"<p>{html.escape(part[1])}</p>")
-            elif part[0] == "table":
-                head = "".join(f"<th>{html.escape(c)}</th>" for c in part[1])
-                rows = "".join("<tr>" + "".join(f"<td>{html.escape(c)}</td>" for c in r) + "</tr>" for r in part[2])
-                body.append(f"<table><tr>{head}</tr>{rows}</table>")
-            else:
-                with open(os.path.join(folder, part[1]), "rb") as fh:
-                    data = base64.b64encode(fh.read()).decode()
-                body.append(f'<figure><img src="data:image/png;base64,{data}" alt="{html.escape(part[2])}">'
-                            f"<figcaption>{html.escape(part[2])}</figcaption></figure>")
-        style = ("body{font-family:sans-serif;max-width:1100px;margin:2em auto;line-height:1.4}"
-                 "table{border-collapse:collapse;font-size:0.85em;margin:1em 0}"
-                 "td,th{border:1px solid #bbb;padding:2px 6px;text-align:right}"
-                 "img{max-width:100%}figcaption{font-size:0.85em;color:#444}")
-        return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>viscosine cross-validation</title>"
-                f"<style>{style}</style></head><body>{''.join(body)}</body></html>")
+        """The offline page: report.md rendered, its images embedded (read from ``folder``)."""
+        return _html.render(self.markdown(), folder, title="viscosine cross-validation")
 
 
 def _fmt(v, digits=6):

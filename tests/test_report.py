@@ -36,6 +36,22 @@ def test_quick_report_writes_every_part(quick_report):
     assert html.count("data:image/png;base64,") == 13 and "src=\"fig" not in html  # readable offline
 
 
+def test_quick_report_html_is_the_markdown_rendered(quick_report):
+    """report.html renders report.md: code spans, tables, headings and embedded images."""
+    out, _ = quick_report
+    md = (out / "report.md").read_text()
+    html = (out / "report.html").read_text()
+    assert "<code>analytic/</code>" in html
+    outside_code = re.sub(r"<pre>.*?</pre>|<code>.*?</code>", "", html, flags=re.S)
+    assert "`" not in outside_code  # no Markdown code span left raw
+    tables = re.findall(r"^\|(?:---\|)+$", md, re.M)
+    assert html.count("<table>") == len(tables) > 5 and "| --- |" not in html
+    assert html.count("<h2>") == len(re.findall(r"^## ", md, re.M))
+    images = re.findall(r"^!\[[^\]]*\]\(([^)]+)\)$", md, re.M)
+    assert html.count('<img src="data:image/png;base64,') == len(images)
+    assert "![" not in html
+
+
 def test_quick_report_agreement_is_within_the_measured_tolerances(quick_report):
     out, _ = quick_report
     md = (out / "report.md").read_text()
