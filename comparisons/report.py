@@ -3,13 +3,27 @@
 Both roads are run on E∞/E0 = 3, hk = 1 and overlaid on the paper's figures 3–12 (analytic curves,
 BEM markers), the fields of both roads are compared at a few operating points, and a convergence
 study by mesh refinement measures the BEM's error against the semi-analytic solution, its observed
-order and a Richardson extrapolation.  Every BEM run is its own file in `DIR/results/`, written as
-soon as it is finished (`store.py`), so an interrupted report loses nothing and `--resume` does not
-recompute what is done.  Progress goes to standard error.
+order and a Richardson extrapolation.  The material's E′, E″ and tan δ are drawn with the sliding
+frequencies of the report's speeds, and a third code, Tamaas (`comparisons.peers.tamaas`), is run
+below, at and above the friction peak with its time step halved twice, against both roads (when
+it is not installed, its section says how to install it).
+
+Every run (BEM or Tamaas) is its own file in `DIR/results/`, written as soon as it is finished
+(`store.py`), so an interrupted report loses nothing and `--resume` does not recompute what is
+done.  Progress goes to standard error.  report.md is the report; report.html is the same Markdown
+rendered by `comparisons._html` with its figures embedded (readable offline).
+
+References
+----------
+Menga, Putignano, Carbone & Demelio, The sliding contact of a rigid wavy surface with a
+viscoelastic half-space, Proc. R. Soc. A 470, 20140392 (2014): eq. (2.3) (the material), eq. (2.5)
+(the BEM's Green's function), eqs (2.7)–(2.15) (the semi-analytic road), eq. (3.1) (friction),
+figures 3–12.
 """
 from __future__ import annotations
 
 import datetime
+import functools
 import math
 import os
 import platform
@@ -36,16 +50,17 @@ class Config:
     conv_nodes: list                # meshes of the convergence study
     grid_nodes: list                # meshes of the cross-solver grid
     workers: int
+    tamaas_nodes: int               # Tamaas's grid (its cost grows like N²: N steps of N log N)
 
 
 def config(quick, workers=None):
     w = workers or os.cpu_count() or 1
     if quick:
         return Config(True, 1024, np.logspace(-2, 2, 5), np.array([0.1, 0.3, 0.7, 1.1]),
-                      [2 ** n for n in range(8, 13)], [1024, 4096], w)
+                      [2 ** n for n in range(8, 13)], [1024, 4096], w, 256)
     return Config(False, 4096, np.logspace(-2, 2, 9),
                   np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1, 1.3]),
-                  [2 ** n for n in range(8, 17)], [2 ** n for n in range(8, 17, 2)], w)
+                  [2 ** n for n in range(8, 17)], [2 ** n for n in range(8, 17, 2)], w, 512)
 
 
 FIG_SPEEDS = [0.01, 1.0, 2.0, 5.0, 10.0, 100.0]          # figures 4–6 (legend of figure 4)
@@ -98,6 +113,9 @@ def bem_runs(cfg):
             runs.append((_bem(p, s, n), True))
     for n in cfg.grid_nodes:                                              # cross-solver grid
         runs.extend((spec, False) for spec in crosscheck.specs(n))
+    if tamaas_installed():                                                # third code
+        for s in tamaas_speeds()[2]:
+            runs.append((_bem(TAMAAS_LOAD, s, N), False))
     # one run per spec; it keeps its fields if any figure needs them
     merged = {}
     for spec, f in runs:
@@ -106,23 +124,50 @@ def bem_runs(cfg):
     return list(merged.values())
 
 
+def runs(cfg):
+    """Every run of the report (BEM, then Tamaas): list of (spec, with_fields)."""
+    return bem_runs(cfg) + tamaas_runs(cfg)
+
+
 def _run_one(job):
     spec, with_fields = job
+    if spec["solver"] == "tamaas":
+        return spec, with_fields, run_tamaas(spec)
     return spec, with_fields, runner.run(spec, fields=with_fields)
 
 
-def execute(cfg, store, resume, scheduler=None):
-    """Run what is missing (locally or on a Dask cluster), writing each result as it is done."""
+def _cost(spec):
+    """A rough relative cost, to start the long runs first (they then overlap the short ones)."""
+    if spec["solver"] == "tamaas":  # N steps per period of an N log N solve, a few periods
+        return 40.0 * spec["nodes"] ** 2 / spec["cells_per_step"]
+    return float(spec["nodes"])
+
+
+def execute(cfg, store, resume, scheduler=None, jobs=None):
+    """Run what is missing (locally or on a Dask cluster), writing each result as it is done.
+
+    Parameters
+    ----------
+    jobs : list of (spec, with_fields), optional
+        Default: every run of the report (`runs`).
+
+    Returns
+    -------
+    (float, str)
+        The seconds spent and where the runs went (local processes or the scheduler's address).
+    """
     from . import _cluster
-    jobs = bem_runs(cfg)
+    jobs = runs(cfg) if jobs is None else jobs
     todo = [j for j in jobs if not (resume and store.has(*j))]
-    # the largest meshes first, so that the long runs overlap the many short ones
-    todo.sort(key=lambda j: -j[0]["nodes"])
-    print(f"report: {len(jobs)} BEM runs, {len(jobs) - len(todo)} already done", file=sys.stderr)
+    todo.sort(key=lambda j: -_cost(j[0]))
+    print(f"report: {len(jobs)} runs, {len(jobs) - len(todo)} already done", file=sys.stderr)
     t0 = time.monotonic()
+    where = "none (every result read from the store)"
     if todo:
         workers = None if scheduler else cfg.workers
         with _cluster.executor(workers, scheduler) as ex:
+            where = (f"Dask scheduler {scheduler} ({ex.workers} workers)" if scheduler else
+                     f"{ex.workers} local processes" if ex.workers > 1 else "this process")
             for i, (k, value) in enumerate(ex.imap(_run_one, todo, ordered=False), 1):
                 spec, f = todo[k]
                 if isinstance(value, _cluster.Failure):  # the worker died: a failed run
@@ -131,14 +176,133 @@ def execute(cfg, store, resume, scheduler=None):
                     out = value[2]
                 store.put(spec, out, f)
                 _progress(i, len(todo), t0, spec, out)
-    return time.monotonic() - t0
+    return time.monotonic() - t0, where
 
 
 def _progress(i, n, t0, spec, out):
     what = f"load={spec['load']}" if spec["load"] is not None else f"Δ/h={spec['penetration']}"
+    if spec["solver"] == "tamaas":
+        solver = f"tamaas N={spec['nodes']} dt={spec['cells_per_step']}·T/N"
+    else:
+        solver = f"bem N={spec['nodes']}"
     status = "ok" if out["ok"] else "FAILED"
-    print(f"report: [{i}/{n}] bem N={spec['nodes']} {what} V/V0={spec['speed']:.3g} "
+    print(f"report: [{i}/{n}] {solver} {what} V/V0={spec['speed']:.4g} "
           f"{status} {out['seconds']:.2f} s ({time.monotonic() - t0:.0f} s)", file=sys.stderr)
+
+
+# ---------------------------------------------------------------------------- Tamaas
+TAMAAS_LOAD = 0.15
+TAMAAS_CELLS = (4, 2, 1)  # dt = c·T/N (T = λ/V): the step halved twice, for a first-order study
+
+
+def tamaas_installed():
+    """True when the third code can run here (the peers extra is installed)."""
+    import importlib.util
+    return importlib.util.find_spec("tamaas") is not None
+
+
+@functools.lru_cache(maxsize=None)
+def tamaas_speeds():
+    """(peak speed, peak μ, (speeds below, at and above the friction peak)) at TAMAAS_LOAD.
+
+    The peak is the semi-analytic road's (`comparisons.peers.tamaas.friction_peak`); the three
+    speeds are peak/3, peak and 3·peak rounded to four digits, so that the store's specs are
+    plain, readable numbers.
+    """
+    from .peers import tamaas as peer
+    peak, mu = peer.friction_peak(load=TAMAAS_LOAD, ratio=RATIO, hk=HK)
+    return peak, mu, tuple(float(f"{v:.4g}") for v in (peak / 3.0, peak, 3.0 * peak))
+
+
+def _tamaas(speed, nodes, cells):
+    return {"solver": "tamaas", "load": TAMAAS_LOAD, "penetration": None, "speed": float(speed),
+            "ratio": RATIO, "hk": HK, "nodes": int(nodes), "cells_per_step": int(cells)}
+
+
+def tamaas_runs(cfg):
+    """One run per (speed, time step): independent, so each is its own store entry."""
+    if not tamaas_installed():
+        return []
+    return [(_tamaas(s, cfg.tamaas_nodes, c), False) for s in tamaas_speeds()[2]
+            for c in TAMAAS_CELLS]
+
+
+def run_tamaas(spec):
+    """One Tamaas run to steady sliding, as a store document (never raises)."""
+    from .peers import tamaas as peer
+    t0 = time.perf_counter()
+    dt = spec["cells_per_step"] * 2.0 * math.pi / (spec["speed"] * spec["nodes"])
+    try:
+        res = peer.solve(load=spec["load"], speed=spec["speed"], ratio=spec["ratio"],
+                         hk=spec["hk"], nodes=spec["nodes"], dt=dt)
+        rec = res.as_dict()
+        why = runner.check_record(rec, spec)
+    except Exception as exc:  # a failure of the third code is this run's result
+        text = str(exc).strip().splitlines()
+        rec, why = None, f"{type(exc).__name__}: {text[0] if text else 'Tamaas failed'}"
+    return {"ok": why is None, "record": rec if why is None else None, "error": why,
+            "seconds": time.perf_counter() - t0}
+
+
+def tamaas_study(store, cfg):
+    """The Tamaas runs read back from the store, with both roads at the same points.
+
+    Returns
+    -------
+    dict
+        Plain data in the shape of `comparisons.peers.tamaas.third_code_table` (``inputs``,
+        ``peak_speed``, ``peak_mu``, ``summary`` per speed: ``mu_per_dt``, ``dt_over_period``,
+        ``order``, ``mu_richardson``, ``mu_error``, ``mu_analytic``, ``relative_difference``),
+        each summary entry also carrying ``rows`` (one per time step), ``richardson``,
+        ``error`` and ``order`` of every studied quantity, the semi-analytic ``analytic`` and
+        ``bem`` records, and ``seconds`` (the Tamaas runs' wall time); plus ``seconds`` in all.
+    """
+    from .peers import tamaas as peer
+    peak, peak_mu, speeds = tamaas_speeds()
+    n = cfg.tamaas_nodes
+    summary, total = [], 0.0
+    for sp in speeds:
+        rows, seconds = [], 0.0
+        for c in TAMAAS_CELLS:
+            doc = store.get(_tamaas(sp, n, c))
+            seconds += doc.get("seconds") or 0.0
+            rec = doc["record"] if doc["ok"] else None
+            row = {"cells_per_step": c, "dt_over_period": c / n, "success": rec is not None,
+                   "dt": c * 2.0 * math.pi / (sp * n), "error": doc["error"]}
+            if rec is not None:
+                row.update(dt=rec["dt"], dt_over_period=rec["diagnostics"]["dt_over_period"],
+                           steps=rec["diagnostics"]["steps"],
+                           periods=rec["diagnostics"]["periods"])
+            row.update({k: (rec or {}).get(k) for k in peer.STUDY_KEYS})
+            rows.append(row)
+        ext = peer._extrapolate(rows)  # the peer's own Richardson step (first order)
+        a = _solve(TAMAAS_LOAD, sp).as_dict()
+        b = _get(store, _bem(TAMAAS_LOAD, sp, cfg.nodes))
+        mu_r = ext["richardson"]["mu"]
+        summary.append({
+            "speed": sp, "nodes": n, "rows": rows, "seconds": seconds,
+            "mu_per_dt": [r["mu"] for r in rows],
+            "dt_over_period": [r["dt_over_period"] for r in rows],
+            "order": ext["order"]["mu"], "mu_richardson": mu_r, "mu_error": ext["error"]["mu"],
+            "mu_analytic": a["mu"],
+            "relative_difference": None if mu_r is None else mu_r / a["mu"] - 1.0,
+            "richardson": ext["richardson"], "error": ext["error"], "orders": ext["order"],
+            "analytic": a, "bem": None if b is None else b["record"],
+            "complete": all(r["success"] for r in rows)})
+        total += seconds
+    return {"inputs": {"load": TAMAAS_LOAD, "ratio": RATIO, "hk": HK, "nodes": n,
+                       "cells_per_step": list(TAMAAS_CELLS)},
+            "peak_speed": peak, "peak_mu": peak_mu, "summary": summary, "seconds": total,
+            "tamaas_version": _tamaas_version()}
+
+
+def _tamaas_version():
+    try:
+        from importlib.metadata import version
+        return version("tamaas")
+    except Exception:  # pragma: no cover - an unusual install: the module still says
+        import tamaas
+        return str(getattr(tamaas, "__version__", "unknown"))
 
 
 # ---------------------------------------------------------------------------- analytic curves
@@ -516,8 +680,115 @@ def _versions():
             "scipy": scipy.__version__, "numba": numba.__version__, "matplotlib": matplotlib.__version__}
 
 
-def write_report(folder, store, cfg, timings, failures):
-    """Write the figures, report.md and report.html; `timings` gains the time spent here."""
+PAPER = ("Menga, Putignano, Carbone & Demelio, The sliding contact of a rigid wavy surface with a "
+         "viscoelastic half-space, Proc. R. Soc. A 470, 20140392 (2014)")
+
+
+def material_section(doc, save, cfg):
+    """E′, E″ and tan δ of the report's material, with the sliding frequencies of its speeds."""
+    import matplotlib.pyplot as plt
+    from . import _figures
+    j0, j1 = 1.0, 1.0 - 1.0 / RATIO  # the SLS as a one-term Prony series, units E0 and τ
+    fig, ax = plt.subplots(figsize=(6.6, 4.4))
+    _figures.plot_material(ax, j0, [(j1, 1.0)], speeds=cfg.speeds_bem,
+                           speeds_label="kV at the BEM speeds of the figures",
+                           title=f"Standard linear solid, E∞/E0 = {RATIO:g}: J0 = {j0:g}, "
+                                 f"J1 = {j1:.4g}, τ1 = 1 (creep time)")
+    save(fig, "material", f"Storage and loss moduli E′, E″ (units E0) and loss tangent of the "
+                          f"standard linear solid with E∞/E0 = {RATIO:g} against ωτ; vertical "
+                          f"lines: the sliding frequencies ωτ = kVτ = V/V0 of the BEM markers "
+                          f"(V/V0 = {', '.join(f'{v:.3g}' for v in cfg.speeds_bem)})")
+    doc.p(f"The paper's standard linear solid (eq. 2.3) is the one-term Prony creep function "
+          f"J(t) = J0 − J1 e^(−t/τ) with J0 = 1/E0 and J1 = 1/E0 − 1/E∞ = {j1:.4g}/E0, τ the "
+          "creep (retardation) time; its relaxation time is τE0/E∞ "
+          "(`docs/conventions.md`, 'Creep times, not relaxation times'). A wavenumber k sliding "
+          "at speed V is loaded at the frequency ω = kV, so ωτ is the speed input V/V0 itself. "
+          f"E′ rises from E0 to E∞ = {RATIO:g} E0; tan δ peaks at ωτ = √(E∞/E0) = "
+          f"{math.sqrt(RATIO):.4g} (tan δ = {(RATIO - 1) / (2 * math.sqrt(RATIO)):.4g}) and E″ at "
+          f"ωτ = E∞/E0 = {RATIO:g}, the inverse relaxation time.")
+
+
+def tamaas_section(doc, save, store, cfg, timings):
+    """Tamaas against both roads below, at and above the friction peak (or how to install it)."""
+    if not tamaas_installed():
+        doc.p("Tamaas is not installed here, so this section has no results. Install the third "
+              "code with `pip install 'viscosine[peers]'` (Tamaas 2.9) and run the report "
+              "again; `--resume` reuses every other result.")
+        return
+    import matplotlib.pyplot as plt
+    from .peers import tamaas as peer
+    data = tamaas_study(store, cfg)
+    timings["Tamaas runs (sum over processes)"] = data["seconds"]
+    n, s0 = cfg.tamaas_nodes, data["summary"]
+    where = ["below", "at", "above"]
+    speeds = ", ".join(f"{e['speed']:.4g}" for e in s0)
+    doc.p(f"Tamaas {data['tamaas_version']} (`comparisons.peers.tamaas`) is a third code nobody "
+          "on this project wrote: its transient viscoelastic solver (a generalised Maxwell solid, "
+          "backward Euler in time, Polonsky–Keer contact on an FFT grid) is stepped until the "
+          "sliding is steady, and it never sees the steady-sliding Green's function (2.5) nor "
+          "Hunter's transformation. It takes relaxation times, so it is given "
+          f"τE0/E∞ = τ/{RATIO:g}. Operating points: p̃∞ = {TAMAAS_LOAD:g}, E∞/E0 = {RATIO:g}, "
+          f"hk = {HK:g}, at V/V0 = {speeds}: below, at and "
+          f"above the friction peak of the semi-analytic road (V/V0 = {data['peak_speed']:.4g}, "
+          f"μ = {data['peak_mu']:.5f}). Tamaas's grid has N = {n} nodes; each run is stepped "
+          f"with dt = {', '.join(str(c) for c in TAMAAS_CELLS)} × T/N (T = λ/V the period "
+          "transit time, so the indenter crosses that many cells per step). Backward Euler is "
+          "first order: its error halves with dt, and the Richardson value "
+          "q + (q − q_2dt) from the two finest steps removes it; what remains is Tamaas's "
+          f"spatial discretisation on N = {n} nodes. The BEM is at N = {cfg.nodes}.")
+    ok = [e for e in s0 if e["complete"]]
+    if ok:
+        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        peer.plot_dt_convergence(ax, {**data, "summary": ok})
+        save(fig, "tamaas_dt", f"Relative error of Tamaas's μ against the semi-analytic road as "
+                               f"dt is halved (p̃∞ = {TAMAAS_LOAD:g}, E∞/E0 = {RATIO:g}, "
+                               f"hk = {HK:g}, N = {n}); dashed: the Richardson value's error; "
+                               "dotted: slope 1 (first order)")
+    rows = []
+    for e in s0:
+        prev = None
+        for r in e["rows"]:
+            err = None if r["mu"] is None else r["mu"] / e["mu_analytic"] - 1.0
+            ratio = "—" if (prev is None or err is None or err == 0.0) else f"{prev / err:.3f}"
+            rows.append([_fmt(e["speed"], 4), f"{r['cells_per_step']} × T/N",
+                         _fmt(r.get("dt"), 4), "—" if not r["success"] else
+                         f"{r['steps']} ({r['periods']})", _fmt(r["mu"], 8),
+                         "—" if err is None else f"{err:+.3e}", ratio])
+            prev = err
+    doc.p(f"Tamaas's time-step study (N = {n}): the error of μ against the semi-analytic road "
+          "and its ratio to the error at twice the step (2 for first order).")
+    doc.table(["V/V0", "dt", "dt/τ", "steps (periods)", "μ Tamaas", "μ/μ_analytic − 1",
+               "error(2dt)/error(dt)"], rows)
+    rows = []
+    for e, pos in zip(s0, where):
+        a, b = e["analytic"], e["bem"]
+        for k, rel in (("mu", True), ("penetration", True), ("ka", False)):
+            t, te, order = e["richardson"][k], e["error"][k], e["orders"][k]
+            bv = None if b is None else b[k]
+            diff = (lambda v: "—" if v is None else
+                    (f"{v / a[k] - 1.0:+.2e}" if rel else f"{v - a[k]:+.2e}"))
+            rows.append([f"{_fmt(e['speed'], 4)} ({pos} the peak)", {"mu": "μ", "penetration":
+                         "Δ/h", "ka": "ka"}[k], _fmt(a[k], 8), _fmt(bv, 8), _fmt(t, 8),
+                         "—" if te is None else f"{te:.1e}",
+                         "—" if order is None else f"{order:.2f}", diff(bv), diff(t)])
+    doc.p("Three codes at the same operating points. Tamaas's value is its Richardson "
+          "extrapolation to dt → 0 with the estimated size of the next term and the observed "
+          "order in dt; differences from the semi-analytic road are relative for μ and Δ/h, "
+          f"absolute for ka. BEM at N = {cfg.nodes}, Tamaas at N = {n}.")
+    doc.table(["V/V0", "quantity", "semi-analytic", "BEM", "Tamaas (dt → 0)",
+               "est. dt error (absolute)", "order in dt", "BEM − semi-analytic",
+               "Tamaas − semi-analytic"], rows)
+    doc.p(f"Cost: {sum(len(e['rows']) for e in s0)} Tamaas runs, {data['seconds']:.1f} s "
+          "in all (summed over processes; each is stored as it finishes, so `--resume` does not "
+          "run it again).")
+
+
+def write_report(folder, store, cfg, timings, failures, where=None):
+    """Write the figures, report.md and report.html; `timings` gains the time spent here.
+
+    ``where`` says where the runs went (local processes or a Dask scheduler), for the
+    provenance table.
+    """
     t_start = time.monotonic()
     import matplotlib
     matplotlib.use("Agg")
@@ -526,9 +797,10 @@ def write_report(folder, store, cfg, timings, failures):
     doc = Doc()
     doc.h(1, "viscosine: cross-validation report")
     doc.p(f"Steady sliding of a rigid sinusoid over a standard linear solid, E∞/E0 = {RATIO:g}, hk = {HK:g} "
-          f"(the paper's parameters). Lines: semi-analytic road (`analytic/`, Hunter's transformation and "
+          f"(the parameters of {PAPER}). Lines: semi-analytic road (`analytic/`, Hunter's transformation and "
           f"the closure (2.14)–(2.15)). Markers: boundary-element road (`bem/`, eq. 2.5 discretised "
-          f"directly, N = {cfg.nodes} panels per period). {'Quick run (coarser meshes, fewer points).' if cfg.quick else ''}")
+          f"directly, N = {cfg.nodes} panels per period). Units, signs and output keys: "
+          f"`docs/conventions.md`. {'Quick run (coarser meshes, fewer points).' if cfg.quick else ''}")
     if failures:
         doc.h(2, "Runs that did not converge")
         doc.p("These operating points are missing from the figures and tables below; they were not reported as results.")
@@ -538,6 +810,9 @@ def write_report(folder, store, cfg, timings, failures):
         fig.savefig(os.path.join(folder, f"{name}.png"), dpi=110)
         plt.close(fig)
         doc.img(f"{name}.png", caption)
+
+    doc.h(2, "The material")
+    material_section(doc, save, cfg)
 
     doc.h(2, "The paper's figures, both roads")
     for name, fn in FIGURES:
@@ -608,6 +883,9 @@ def write_report(folder, store, cfg, timings, failures):
                     else f"{abs(c['extrapolated'][k] - c['ref'][k]):.2e}"]
                    for k in ("ka", "ke", "penetration", "mu")])
 
+    doc.h(2, "A third code: Tamaas")
+    tamaas_section(doc, save, store, cfg, timings)
+
     doc.h(2, "Provenance")
     ver = _versions()
     doc.table(["item", "value"],
@@ -616,7 +894,10 @@ def write_report(folder, store, cfg, timings, failures):
                ["BEM mesh (figures, fields, scalars)", str(cfg.nodes)],
                ["BEM meshes (convergence)", ", ".join(str(n) for n in cfg.conv_nodes)],
                ["mode", "quick" if cfg.quick else "full"],
-               ["processes", str(cfg.workers)],
+               ["runs done on", where or f"{cfg.workers} local processes"],
+               ["Tamaas grid (third code)", f"N = {cfg.tamaas_nodes}, dt = "
+                f"{', '.join(str(c) for c in TAMAAS_CELLS)} × T/N" if tamaas_installed()
+                else "Tamaas not installed"],
                ["machine", f"{platform.machine()}, {os.cpu_count()} cores, {platform.system()}"]]
               + [[k, v] for k, v in ver.items()]
               + [[f"time: {k}", f"{v:.1f} s"] for k, v in
@@ -639,11 +920,12 @@ def main(args):
     cfg = config(args.quick, args.workers)
     os.makedirs(args.out, exist_ok=True)
     store = Store(os.path.join(args.out, "results"))
-    timings = {"BEM runs": execute(cfg, store, args.resume, getattr(args, "scheduler", None))}
-    failures = [(spec, doc["error"]) for spec, _ in bem_runs(cfg)
+    seconds, where = execute(cfg, store, args.resume, getattr(args, "scheduler", None))
+    timings = {"runs (wall)": seconds}
+    failures = [(spec, doc["error"]) for spec, _ in runs(cfg)
                 for doc in [store.get(spec)] if not doc["ok"]]
     print("report: figures and tables", file=sys.stderr)
-    write_report(args.out, store, cfg, timings, failures)
+    write_report(args.out, store, cfg, timings, failures, where)
     print(f"report: wrote {os.path.join(args.out, 'report.md')} and report.html in "
           f"{time.monotonic() - t0:.0f} s", file=sys.stderr)
     return 1 if failures else 0

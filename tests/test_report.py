@@ -7,6 +7,8 @@ import sys
 
 import pytest
 
+from comparisons import report
+
 
 def _cli(*args, cwd):
     return subprocess.run([sys.executable, "-m", "comparisons", *args], capture_output=True,
@@ -25,15 +27,51 @@ def test_quick_report_writes_every_part(quick_report):
     assert proc.returncode == 0, proc.stderr
     assert "report: [" in proc.stderr  # progress on standard error
     md = (out / "report.md").read_text()
-    for fig in ["fig03a", "fig03b"] + [f"fig{n:02d}" for n in range(4, 13)] + ["fields", "convergence"]:
+    figures = (["material", "fig03a", "fig03b"] + [f"fig{n:02d}" for n in range(4, 13)]
+               + ["fields", "convergence"] + (["tamaas_dt"] if report.tamaas_installed() else []))
+    for fig in figures:
         assert (out / f"{fig}.png").stat().st_size > 10_000
         assert f"({fig}.png)" in md
-    for section in ["Fields: σ(x) and v(x)", "Scalars from both roads", "Agreement of the two roads",
-                    "Convergence of the BEM", "Provenance"]:
-        assert section in md
+    for section in ["The material", "Fields: σ(x) and v(x)", "Scalars from both roads",
+                    "Agreement of the two roads", "Convergence of the BEM",
+                    "A third code: Tamaas", "Provenance"]:
+        assert f"## {section}" in md
     assert "numba" in md and "date (UTC)" in md
+    assert re.search(r"^\| runs done on \| (this process|\d+ local processes) \|$", md, re.M)
     html = (out / "report.html").read_text()
-    assert html.count("data:image/png;base64,") == 13 and "src=\"fig" not in html  # readable offline
+    assert html.count("data:image/png;base64,") == len(figures) and "src=\"fig" not in html
+
+
+def test_quick_report_has_the_third_code_against_both_roads(quick_report):
+    """Tamaas at three speeds around the friction peak, each (speed, dt) run its own store
+    entry; its μ error halves with dt and its Richardson μ meets both roads."""
+    pytest.importorskip("tamaas")  # the test extra installs it
+    out, _ = quick_report
+    specs = [json.loads(p.read_text())["spec"] for p in (out / "results").glob("*.json")]
+    tamaas = [s for s in specs if s["solver"] == "tamaas"]
+    assert len(tamaas) == 9 and {s["cells_per_step"] for s in tamaas} == {1, 2, 4}
+    md = (out / "report.md").read_text()
+    section = md.split("## A third code: Tamaas")[1].split("\n## ")[0]
+    ratios = [float(r) for r in re.findall(r"^\| [\d.]+ \| [12] × T/N \|.* \| ([\d.]+) \|$",
+                                           section, re.M)]
+    assert len(ratios) == 6 and all(1.9 < r < 2.1 for r in ratios)  # first order in dt
+    mu = re.findall(r"^\| [\d.]+ \((below|at|above) the peak\) \| μ \|(.*)\|$", section, re.M)
+    assert [m[0] for m in mu] == ["below", "at", "above"]
+    for _, cells in mu:
+        bem_diff, tamaas_diff = (abs(float(c)) for c in cells.split("|")[-2:])
+        # measured at N = 256: Tamaas's dt → 0 value within 4.3e-4 of the semi-analytic μ
+        assert bem_diff < 5e-5 and tamaas_diff < 1e-3
+
+
+def test_without_tamaas_the_section_says_how_to_install_it(monkeypatch):
+    monkeypatch.setattr(report, "tamaas_installed", lambda: False)
+    cfg = report.config(True, workers=1)
+    assert report.tamaas_runs(cfg) == []
+    assert not any(s["solver"] == "tamaas" or s["load"] == report.TAMAAS_LOAD
+                   for s, _ in report.runs(cfg))
+    doc = report.Doc()
+    report.tamaas_section(doc, None, None, cfg, {})
+    assert "pip install 'viscosine[peers]'" in doc.markdown()
 
 
 def test_quick_report_html_is_the_markdown_rendered(quick_report):
@@ -65,16 +103,20 @@ def test_resume_recomputes_only_what_is_missing(quick_report):
     out, _ = quick_report
     results = out / "results"
     files = sorted(p for p in results.iterdir() if p.suffix == ".json")
-    removed = files[:3]
+    solver = {p: json.loads(p.read_text())["spec"]["solver"] for p in files}
+    removed = ([p for p in files if solver[p] == "bem"][:2]
+               + [p for p in files if solver[p] == "tamaas"][:1])
+    removed = removed if len(removed) == 3 else files[:3]  # without tamaas: three BEM runs
+    kept = next(p for p in files if p not in removed)
+    mtime = kept.stat().st_mtime_ns
     for p in removed:
         p.unlink()
-    mtime = files[5].stat().st_mtime_ns
     proc = _cli("report", "--quick", "--resume", "--out", str(out), cwd=out)
     assert proc.returncode == 0, proc.stderr
-    m = re.search(r"report: (\d+) BEM runs, (\d+) already done", proc.stderr)
+    m = re.search(r"report: (\d+) runs, (\d+) already done", proc.stderr)
     assert int(m.group(1)) - int(m.group(2)) == 3
     assert all(p.exists() for p in removed)
-    assert files[5].stat().st_mtime_ns == mtime
+    assert kept.stat().st_mtime_ns == mtime
     assert not any(p.name.endswith(".part.json") for p in results.iterdir())
 
 
