@@ -944,7 +944,7 @@ def _inputs(case, suite) -> dict:
     else:
         d["profile"] = {"kind": "sinusoid", "hk": float(p.get("hk", 1.0)), "file": "profile.csv"}
     if p.get("prony"):
-        d["material"] = {"kind": "prony", "file": "prony.txt"}
+        d["material"] = {"kind": "prony", "file": "prony.txt", "figure": "material.png"}
     else:
         d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
                          "file": "prony.txt"}
@@ -984,6 +984,8 @@ def export(folder, names=(), suite=None):
         _atomic_write(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
                                                     ensure_ascii=False) + "\n")
         _atomic_write(d / "prony.txt", _prony_text(case["point"]))
+        if case["point"].get("prony"):
+            _material_png(d / "material.png", case)
         _atomic_write(d / "profile.csv", _profile_text(case["point"]))
         sc = {"case": case["name"], "status": cert["status"], "notes": cert["notes"],
               "method": cert["method"],
@@ -1009,6 +1011,21 @@ def export(folder, names=(), suite=None):
     _atomic_write(folder / "index.json", json.dumps(index, indent=1, ensure_ascii=False) + "\n")
     _atomic_write(folder / "README.md", _index_readme(suite, cases))
     return written
+
+
+def _material_png(path, case):
+    """E′, E″ and tan δ of a case's Prony material, its sliding frequency V/V0 marked."""
+    from . import _figures
+    point = case["point"]
+    j0, terms = _figures.prony_numbers(DATA / point["prony"])
+    speed = float(point["speed"])
+    tmp = path.with_name(path.stem + ".part.png")
+    _figures.material_figure(tmp, j0, terms, speeds=[speed],
+                             speeds_label=f"sliding frequency kV: ωτ_ref = V/V0 = {speed:g}",
+                             title=f"{case['name']} ({Path(point['prony']).name}): J0 = {j0:g}, "
+                                   "(J_i, τ_i) = " + ", ".join(f"({j:g}, {t:g})" for j, t in terms)
+                                   + f"; E∞/E0 = {j0 / (j0 - sum(j for j, _ in terms)):.4g}")
+    os.replace(tmp, path)
 
 
 def summary_rows(cases):
@@ -1044,7 +1061,10 @@ def _index_readme(suite, cases) -> str:
            "- `scalars.json` and `scalars.csv`: every certified value with its certified "
            "significant digits, the value rounded to them, and the error bound behind them;",
            "- `fields.csv`: pressure, displacement and gap on a stated grid, each with its "
-           "certified absolute error (`<column>_err`).", "",
+           "certified absolute error (`<column>_err`);",
+           "- `material.png` (cases with a Prony material): the storage and loss moduli E′, E″ "
+           "and the loss tangent of `prony.txt` against frequency, with the case's sliding "
+           "frequency ω = kV (ωτ_ref = V/V0) marked.", "",
            "Quantities (keys of `scalars.json`): `mu` (μ = τf/p∞), `tau_f` (τf(1 − ν²)/E0), "
            "`penetration` (Δ/h), `separation` (s/h = 1 − Δ/h, the mean gap), `load` (p̃∞, "
            "certified under penetration control), `contact_fraction` (2a/λ), `ka`, `ke`, "
@@ -1060,9 +1080,22 @@ def _index_readme(suite, cases) -> str:
            "## How the digits are certified", "", suite["rule"], "",
            "## Cases", "",
            table(["case", "title", "μ digits", "Δ/h digits", "certified by"], summary_rows(cases)),
+           *_materials_list(cases),
            "Cite: Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the "
            "problem and the semi-analytic method).", ""]
     return "\n".join(out)
+
+
+def _materials_list(cases):
+    """README lines linking the material figure of each Prony case (none without one)."""
+    prony = [c for c in cases if c["point"].get("prony")]
+    if not prony:
+        return []
+    return (["Prony materials (creep functions, creep times; `docs/conventions.md` of "
+             "viscosine, 'Creep times, not relaxation times'):", ""]
+            + [f"- {c['name']}: [{c['name']}/material.png]({c['name']}/material.png) "
+               f"({Path(c['point']['prony']).name}, V/V0 = {c['point']['speed']:g})"
+               for c in prony] + [""])
 
 
 # --------------------------------------------------------------------------- command line

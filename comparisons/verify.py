@@ -66,7 +66,8 @@ against the reference (least-squares slope over N), the self-convergence order a
 value (:func:`comparisons.suite.study`), and the error of the Richardson value.
 
 Output: ``DIR/report.md``, ``DIR/report.html`` (offline, images embedded), ``DIR/verdict.json``
-and the figures; exit status 0 when every tolerance holds, 1 otherwise, 2 for bad input (one line
+and the figures (the fields, the convergence study and, for a Prony material, the material's E′,
+E″ and tan δ with the operating point's sliding frequency marked); exit status 0 when every tolerance holds, 1 otherwise, 2 for bad input (one line
 on standard error naming the option, the value and what is allowed).
 
 References
@@ -977,6 +978,19 @@ def _figures(folder, results, reference, ev, label):
     return names
 
 
+def _material_figure(folder, point):
+    """E′, E″ and tan δ of the operating point's Prony material, its sliding frequency marked."""
+    from . import _figures
+    j0, terms = _figures.prony_numbers(point["prony"])
+    speed = float(point["speed"])
+    _figures.material_figure(os.path.join(folder, "material.png"), j0, terms, speeds=[speed],
+                             speeds_label=f"sliding frequency kV: ωτ_ref = V/V0 = {speed:g}")
+    return ("material.png", f"The material of {Path(point['prony']).name}: storage and loss "
+                            f"moduli E′, E″ (units E_ref) and tan δ against ωτ_ref; vertical line: "
+                            f"the sliding frequency of the operating point, ωτ_ref = V/V0 = "
+                            f"{speed:g}")
+
+
 def _suite_wrap(x):
     x = np.asarray(x, float)
     return x - np.floor(x + 0.5)
@@ -1083,6 +1097,8 @@ def write_report(folder, ev, point, reference, results, label, inputs, case=None
     from . import _html
     os.makedirs(folder, exist_ok=True)
     figs = _figures(folder, results, reference, ev, label) if figures else []
+    if figures and point.get("prony"):
+        figs.append(_material_figure(folder, point))
     md = markdown(ev, point, reference, results, label, figs, inputs, case)
     _suite._atomic_write(Path(folder) / "report.md", md)
     _suite._atomic_write(Path(folder) / "report.html",

@@ -226,7 +226,7 @@ def test_check_of_an_unknown_case_is_bad_input(capsys):
 
 # ---------------------------------------------------------------------------- --export
 def test_export_writes_readable_csv_and_json(tmp_path, data):
-    names = ["sls-partial-v1", "harmonics2-sls", "sls-penetration-v1"]
+    names = ["sls-partial-v1", "harmonics2-sls", "sls-penetration-v1", "harmonics3-prony2"]
     rc = cli.main(["suite", "--export", str(tmp_path), "--cases", *names])
     assert rc == 0
     index = json.loads((tmp_path / "index.json").read_text(encoding="utf-8"))
@@ -234,6 +234,10 @@ def test_export_writes_readable_csv_and_json(tmp_path, data):
     assert index["rule"] == suite.RULE
     readme = (tmp_path / "README.md").read_text(encoding="utf-8")
     assert "How the digits are certified" in readme and all(n in readme for n in names)
+    # a Prony material gets its E′, E″, tan δ figure, linked from the README
+    assert (tmp_path / "harmonics3-prony2" / "material.png").stat().st_size > 10_000
+    assert "(harmonics3-prony2/material.png)" in readme
+    assert not any((tmp_path / n / "material.png").exists() for n in names[:3])
     for name in names:
         case = suite.get_case(name, data)
         d = tmp_path / name

@@ -151,6 +151,26 @@ def test_scalars_jsonl_with_a_convergence_study(tmp_path, capsys):
     assert rc == 1 and "FAIL mu" in out
 
 
+def test_a_prony_case_report_draws_its_material(tmp_path, capsys):
+    """A Prony material (here a suite case's file) gets the E′, E″, tan δ figure, with the
+    operating point's sliding frequency marked; a standard linear solid does not."""
+    case = suite.get_case("prony3-partial")
+    sc = {k: r["value"] for k, r in case["certified"]["scalars"].items()}
+    path = tmp_path / "s.jsonl"
+    path.write_text(json.dumps(sc) + "\n", encoding="utf-8")
+    rc, out, err = _run(capsys, "--case", "prony3-partial", "--scalars", str(path),
+                        "--out", str(tmp_path / "rep"))
+    assert rc == 0, out + err
+    md = (tmp_path / "rep" / "report.md").read_text(encoding="utf-8")
+    assert "(material.png)" in md and "prony3.txt" in md and "V/V0 = 1" in md
+    assert (tmp_path / "rep" / "material.png").stat().st_size > 10_000
+    html = (tmp_path / "rep" / "report.html").read_text(encoding="utf-8")
+    assert html.count("data:image/png;base64,") == 1
+    rc, out, err = _run(capsys, "--case", CASE, "--scalars", str(path), "--rtol", "1",
+                        "--out", str(tmp_path / "sls"))
+    assert "material.png" not in (tmp_path / "sls" / "report.md").read_text(encoding="utf-8")
+
+
 def test_si_fields_with_material_and_geometry(tmp_path, capsys):
     E0, nu, h = 2.0e6, 0.5, 1e-4
     f = _reference_fields(512)
