@@ -823,21 +823,19 @@ def _recomputed(cases, out, resume, workers, scheduler, log):
             _atomic_write(Path(out) / f"{doc['name']}.json", json.dumps(doc))
         return doc
 
-    if scheduler:
-        from distributed import Client, as_completed
-        with Client(scheduler) as client:
-            futs = client.map(_recompute, todo, pure=False)
-            for fut in as_completed(futs):
-                yield save(fut.result())
-    elif workers and workers > 1 and len(todo) > 1:
-        from concurrent.futures import ProcessPoolExecutor, as_completed
-        with ProcessPoolExecutor(max_workers=workers) as pool:
-            futs = [pool.submit(_recompute, n) for n in todo]
-            for fut in as_completed(futs):
-                yield save(fut.result())
-    else:
-        for n in todo:
-            yield save(_recompute(n))
+    if not todo:
+        return
+    # one mechanism for every parallel run of the project (comparisons/_cluster.py): this
+    # process, local processes or a Dask cluster; a case whose recomputation raises or whose
+    # worker dies comes back as a Failure and is reported, the others go on
+    from . import _cluster
+    local = workers if (workers and workers > 1 and len(todo) > 1 and not scheduler) else None
+    with _cluster.executor(local, scheduler) as ex:
+        for i, value in ex.imap(_recompute, todo, ordered=False):
+            if isinstance(value, _cluster.Failure):
+                yield {"name": todo[i], "failed": value.error, "seconds": 0.0}
+            else:
+                yield save(value)
 
 
 def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None, suite=None):
@@ -863,8 +861,9 @@ def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None,
     Returns
     -------
     dict
-        ``ok`` (no certified digit changed), ``cases`` (per case: name, changed, raised, seconds)
-        and ``seconds``.
+        ``ok`` (no certified digit changed and every case recomputed), ``cases`` (per case:
+        name, changed, raised, seconds, status; a case whose recomputation raised or whose
+        worker died has status "failed" and says why in ``changed``) and ``seconds``.
     """
     log = log or (lambda s: print(s, file=sys.stderr, flush=True))
     suite = suite or load_suite()
@@ -874,6 +873,12 @@ def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None,
     by_name = {c["name"]: c for c in cases}
     for i, doc in enumerate(_recomputed(cases, out, resume, workers, scheduler, log), 1):
         case = by_name[doc["name"]]
+        if "failed" in doc:  # the recomputation itself failed: nothing certified is confirmed
+            results.append({"name": doc["name"], "raised": [], "seconds": 0.0,
+                            "changed": [f"recomputation failed: {doc['failed']}"],
+                            "status": "failed", "notes": [doc["failed"]]})
+            log(f"suite: [{i}/{len(cases)}] {doc['name']}: FAILED ({doc['failed']})")
+            continue
         old_fields = case_fields(case)
         new_fields = {k: np.asarray(v, float) for k, v in doc["fields"].items()}
         changed, raised = compare(case["certified"], doc["certified"], old_fields, new_fields)
@@ -1125,7 +1130,9 @@ def add_parser(sub):
 
 
 def main(args) -> int:
-    """Run ``suite`` from parsed arguments; exit status 0, 1 (a digit changed) or 2 (bad input)."""
+    """Run ``suite`` from parsed arguments; exit status 0, 1 (a digit changed, a recomputation
+    failed, the scheduler cannot be reached) or 2 (bad input)."""
+    from . import _cluster
     try:
         if args.workers < 1:
             raise SuiteError(f"--workers {args.workers} is not allowed: an integer >= 1")
@@ -1144,13 +1151,26 @@ def main(args) -> int:
         if args.certify:
             certify(args.cases)
             return 0
+        if args.scheduler and args.workers != 1:
+            raise SuiteError("--scheduler and --workers are not allowed together: the cluster "
+                             "decides how many workers run")
         res = check(args.cases, out=args.out, resume=args.resume, workers=args.workers,
                     scheduler=args.scheduler, suite=suite)
     except SuiteError as exc:
         print(str(exc).splitlines()[0], file=sys.stderr)
         return 2
+    except _cluster.MissingPackage as exc:  # --scheduler without the cluster extra
+        print(str(exc).splitlines()[0], file=sys.stderr)
+        return 2
+    except _cluster.ClusterError as exc:  # an unreachable scheduler
+        print(f"suite: {str(exc).splitlines()[0]}", file=sys.stderr)
+        return 1
     for r in res["cases"]:
-        if r["changed"]:
+        if r["status"] == "failed":
+            print(f"{r['name']}: FAILED")
+            for line in r["changed"]:
+                print(f"  {line}")
+        elif r["changed"]:
             print(f"{r['name']}: CHANGED")
             for line in r["changed"]:
                 print(f"  {line}")

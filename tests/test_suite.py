@@ -8,6 +8,7 @@ import copy
 import csv
 import json
 import math
+import sys
 
 import numpy as np
 import pytest
@@ -216,6 +217,43 @@ def test_check_says_when_a_recomputation_certifies_more(subset_check, data):
     res = suite.check(["harmonics2-sls"], out=out, resume=True, suite=low, log=lambda s: None)
     assert res["ok"] and res["cases"][0]["raised"] == [
         f"patch 1 ka: {rec['digits']} → {rec['digits'] + 2} digits"]
+
+
+CHEAP = ["sls-above-fc-v1", "sls-full-v0.1", "sls-ratio1000-full"]  # full contact: ~0.3 s each
+
+
+def test_check_in_local_processes_is_the_serial_check(tmp_path):
+    """--workers 2 goes through comparisons/_cluster.py like every other parallel run."""
+    lines = []
+    res = suite.check(CHEAP, out=tmp_path, workers=2, log=lines.append)
+    assert res["ok"] and [r["name"] for r in res["cases"]] == CHEAP
+    assert sorted(p.stem for p in tmp_path.glob("*.json")) == sorted(CHEAP)
+    assert sum(line.startswith("suite: [") for line in lines) == 3
+
+
+def test_a_case_that_fails_to_recompute_is_reported_and_the_others_go_on(monkeypatch, capsys):
+    real = suite.compute
+
+    def compute(case, **kw):
+        if case["name"] == CHEAP[0]:
+            raise FloatingPointError("injected")
+        return real(case, **kw)
+    monkeypatch.setattr(suite, "compute", compute)
+    res = suite.check(CHEAP[:2], log=lambda s: None)
+    assert not res["ok"]
+    bad, good = res["cases"]
+    assert bad["status"] == "failed" and "FloatingPointError: injected" in bad["changed"][0]
+    assert good["status"] == "complete" and not good["changed"]
+    rc = cli.main(["suite", "--check", "--cases", CHEAP[0], "--out", ""])
+    assert rc == 1 and f"{CHEAP[0]}: FAILED" in capsys.readouterr().out
+
+
+def test_check_on_a_scheduler_without_distributed_names_the_extra(monkeypatch, capsys):
+    monkeypatch.setitem(sys.modules, "distributed", None)  # import distributed → ImportError
+    rc = cli.main(["suite", "--check", "--cases", CHEAP[0], "--out", "",
+                   "--scheduler", "tcp://127.0.0.1:1"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "pip install 'viscosine[cluster]'" in err and len(err.splitlines()) == 1
 
 
 def test_check_of_an_unknown_case_is_bad_input(capsys):
