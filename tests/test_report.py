@@ -153,3 +153,19 @@ def test_bem_bad_input_from_the_command_line(tmp_path):
     (tmp_path / "bad.txt").write_text("J0 1.0\n-0.5 1.0\n")
     proc = _cli("point", "--solver", "bem", "--load", "0.3", "--speed", "1", "--prony", "bad.txt", cwd=tmp_path)
     assert proc.returncode == 2 and len(proc.stderr.strip().splitlines()) == 1
+
+
+def test_runs_on_a_scheduler_are_credited_to_its_address(tmp_path, monkeypatch):
+    """Provenance says where the runs went: the scheduler's address, not this machine's cores."""
+    from comparisons import _cluster, runner
+    from comparisons.store import Store
+
+    class FakeCluster(_cluster.SerialExecutor):
+        workers = 3
+    monkeypatch.setattr(_cluster, "executor", lambda workers, scheduler: FakeCluster())
+    jobs = [(runner.point_spec("bem", 1.0, load=0.3, nodes=64), False)]
+    st = Store(str(tmp_path))
+    _, where = report.execute(report.config(True), st, False, "tcp://10.0.0.1:8786", jobs=jobs)
+    assert where == "Dask scheduler tcp://10.0.0.1:8786 (3 workers)"
+    _, where = report.execute(report.config(True), st, True, "tcp://10.0.0.1:8786", jobs=jobs)
+    assert where.startswith("none")  # --resume with everything stored runs nothing
