@@ -1,7 +1,8 @@
 """The result of one operating point of the semi-analytic road (the result protocol).
 
 Units as in `analytic/__init__.py`; positions x/λ in the crest frame (material streaming toward
-−x, the leading edge of a contact is its +x edge); scalars as in the project's conventions.
+−x, the leading edge of a contact is its +x edge); scalars, units and signs as in
+`docs/conventions.md` ('Outputs: the scalars of one operating point').
 """
 from __future__ import annotations
 

@@ -18,6 +18,10 @@ so that, in the crest frame,
 The paper's (B7) writes arg|M⁻¹|, a typo for arg M⁻¹; its (B6) omits the mean pressure; its (B8)
 is a force per wavelength, negative when it resists.  Full contact holds while σ ≥ 0, i.e. for
 p̃∞ ≥ p̃FC(V) = (hk/2)|E(kV)|/E0 (the paper's threshold relation |E(kVth)|/E0 = 2p̃∞/(hk)).
+docs/conventions.md, 'Reading the paper', lists these readings with the others.
+
+References: Appendix B (eqs B1–B8) and the transition of §3 of Menga, Putignano, Carbone &
+Demelio, Proc. R. Soc. A 470, 20140392, 2014.
 """
 from __future__ import annotations
 

@@ -24,6 +24,10 @@ also small compared with λ), with R = 1/(h k²): ka → 0, V/V0 = ka/z.
 The same closure, written for the periodic contact, is derived in `analytic/DERIVATION.md`; here
 the half-space functions (√(x² − a²), 1/√(x² − a²), x/√(x² − a²) outside, and the Laplace
 transforms that make them Bessel functions) are used directly.
+
+References: S. C. Hunter, The rolling contact of a rigid cylinder with a viscoelastic half space,
+J. Appl. Mech. 28, 611–617 (1961); the periodic problem is that of Menga, Putignano, Carbone &
+Demelio, Proc. R. Soc. A 470, 20140392, 2014.
 """
 from __future__ import annotations
 

@@ -11,8 +11,10 @@ Units as in `analytic/__init__.py`: p̃ = p∞(1 − ν²)/E0, lengths in 1/k or
     gap/h = 2[sin(kx/2) sqrt(sin²(kx/2) − sin²(ka/2)) − sin²(ka/2) arccosh(sin(kx/2)/sin(ka/2))]
             for a < |x| ≤ λ/2.
 
-References: Westergaard (1939); Johnson, Greenwood & Higginson (1985); the paper's ref. [33] and
-the symmetric part of Appendix A, eqs (A8), (A9), (A11).
+References: H. M. Westergaard, Bearing pressures and cracks, J. Appl. Mech. 6, A49–A53 (1939);
+K. L. Johnson, J. A. Greenwood and J. G. Higginson, The contact of elastic regular wavy surfaces,
+Int. J. Mech. Sci. 27, 383–396 (1985); the symmetric part of Appendix A, eqs (A8), (A9), (A11), of
+Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014.
 """
 from __future__ import annotations
 
