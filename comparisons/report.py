@@ -57,7 +57,7 @@ def config(quick, workers=None):
     w = workers or os.cpu_count() or 1
     if quick:
         return Config(True, 1024, np.logspace(-2, 2, 5), np.array([0.1, 0.3, 0.7, 1.1]),
-                      [2 ** n for n in range(8, 13)], [1024, 4096], w, 256)
+                      [2 ** n for n in range(8, 13)], [1024, 4096], w, 128)
     return Config(False, 4096, np.logspace(-2, 2, 9),
                   np.array([0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.9, 1.1, 1.3]),
                   [2 ** n for n in range(8, 17)], [2 ** n for n in range(8, 17, 2)], w, 512)
@@ -163,7 +163,13 @@ def execute(cfg, store, resume, scheduler=None, jobs=None):
     jobs = runs(cfg) if jobs is None else jobs
     todo = [j for j in jobs if not (resume and store.has(*j))]
     todo.sort(key=lambda j: -_cost(j[0]))
-    print(f"report: {len(jobs)} runs, {len(jobs) - len(todo)} already done", file=sys.stderr)
+    counts = []
+    for solver, name in (("bem", "BEM"), ("tamaas", "Tamaas")):
+        n = sum(j[0]["solver"] == solver for j in jobs)
+        if n or solver == "bem":
+            done = n - sum(j[0]["solver"] == solver for j in todo)
+            counts.append(f"{n} {name} runs, {done} already done")
+    print(f"report: {'; '.join(counts)}", file=sys.stderr)
     t0 = time.monotonic()
     where = "none (every result read from the store)"
     if todo:
