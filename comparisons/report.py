@@ -284,7 +284,7 @@ def tamaas_study(store, cfg):
                            periods=rec["diagnostics"]["periods"])
             row.update({k: (rec or {}).get(k) for k in peer.STUDY_KEYS})
             rows.append(row)
-        ext = peer._extrapolate(rows)  # the peer's own Richardson step (first order)
+        ext = peer.extrapolate(rows)  # the peer's own Richardson step (first order)
         a = _solve(TAMAAS_LOAD, sp).as_dict()
         b = _get(store, _bem(TAMAAS_LOAD, sp, cfg.nodes))
         mu_r = ext["richardson"]["mu"]

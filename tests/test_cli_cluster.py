@@ -95,6 +95,7 @@ def test_sweep_on_a_dask_cluster_returns_exactly_the_local_sweep(cluster, monkey
 def test_report_runs_on_a_dask_cluster(cluster, tmp_path, monkeypatch):
     jobs = [(runner.point_spec("bem", s, load=0.3, nodes=64), s == 1.0) for s in (0.5, 1.0)]
     monkeypatch.setattr(report, "bem_runs", lambda cfg: list(jobs))
+    monkeypatch.setattr(report, "tamaas_runs", lambda cfg: [])
     st = Store(str(tmp_path))
     report.execute(report.config(True), st, resume=False, scheduler=cluster.scheduler_address)
     local = {k: runner.run(spec, fields=f) for k, (spec, f) in enumerate(jobs)}

@@ -697,12 +697,12 @@ def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=
     out = {"inputs": {"load": load, "speed": speed, "ratio": ratio, "hk": hk, "nodes": nodes,
                       "dts": list(dts), **options},
            "rows": rows, "success": all(r["success"] for r in rows)}
-    out.update(_extrapolate(rows))
+    out.update(extrapolate(rows))
     out["mesh"] = None
     if mesh_check and nodes // 2 >= ACCEPTED["nodes"][0] and (nodes // 2) % 2 == 0:
         half = _study_rows(used[-2:], load=load, speed=speed, ratio=ratio, hk=hk,
                            nodes=nodes // 2, **options)
-        ext = _extrapolate(half)["richardson"]
+        ext = extrapolate(half)["richardson"]
         out["mesh"] = {"nodes": nodes // 2, "rows": half, "richardson": ext,
                        "difference": {k: (None if ext[k] is None or out["richardson"][k] is None
                                           else out["richardson"][k] - ext[k])
@@ -726,7 +726,7 @@ def _study_rows(dts, **kw):
     return rows
 
 
-def _extrapolate(rows):
+def extrapolate(rows):
     """Order, Richardson value and error estimate of every quantity (rows coarse → fine)."""
     dts = [r["dt"] for r in rows]
     order, rich, err = {}, {}, {}
