@@ -14,67 +14,18 @@ from scipy.optimize import brentq
 
 import viscosine
 from viscosine import Fields
+from viscosine._protocol import SCALAR_KEYS, Patch, _plain
 
 from . import _kernels as K
 from ._closure import State
 from .full_contact import modulus
 
-SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
-               "mu")
 _TWO_PI = 2.0 * math.pi
-
-
-def _plain(v):
-    """A JSON-ready copy: floats finite or None, tuples as lists, numpy scalars as Python."""
-    if isinstance(v, dict):
-        return {str(k): _plain(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
-    if isinstance(v, (bool, np.bool_)):
-        return bool(v)
-    if isinstance(v, (int, np.integer)):
-        return int(v)
-    if isinstance(v, (float, np.floating)):
-        v = float(v)
-        return v if math.isfinite(v) else None
-    return v
 
 
 def _wrap(x):
     """x/λ into [−½, ½) without touching values already there (keeps tiny positions exact)."""
     return x if -0.5 <= x < 0.5 else (x + 0.5) % 1.0 - 0.5
-
-
-@dataclass(frozen=True)
-class Patch:
-    """One contact patch (positions x/λ, crest at 0).
-
-    Attributes
-    ----------
-    trailing_edge, leading_edge : float
-        The −x and +x edges (leading > trailing; the pair may straddle ±½).
-    width : float
-        leading − trailing, in wavelengths (2a/λ).
-    load : float
-        The part of p̃∞ the patch carries (all of it: the sinusoid has one patch per period).
-    centroid : float
-        x/λ of the pressure centroid (full contact: of the pressure maximum, the centre of the
-        window over which the centroid is taken).
-    summit : float
-        x/λ of the highest profile point in the patch: 0, the crest.
-    ka, ke, ke_hat : float
-        π·width, 2π(centre − summit) (None in full contact), 2π(centroid − summit).
-    """
-
-    trailing_edge: float
-    leading_edge: float
-    width: float
-    load: float
-    centroid: float
-    summit: float
-    ka: float
-    ke: float | None
-    ke_hat: float
 
 
 @dataclass(frozen=True)

@@ -69,6 +69,7 @@ import numpy as np
 
 import viscosine
 from viscosine import Fields
+from viscosine._protocol import SCALAR_KEYS, Patch, _plain
 
 #: the Tamaas versions this adapter was verified on (its conventions are measured, not assumed)
 TAMAAS_REQUIREMENT = "tamaas>=2.9,<2.10"
@@ -79,8 +80,6 @@ _NU = 0.0
 _E_TAMAAS = 2.0 * (1.0 + _NU)
 _ESTAR0 = _E_TAMAAS / (1.0 - _NU * _NU)  # relaxed plane-strain modulus in Tamaas units: 2
 
-SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
-               "mu")
 _TWO_PI = 2.0 * math.pi
 
 #: name -> (low, high, what is allowed and why); bounds inclusive
@@ -168,55 +167,7 @@ def _import_tamaas():
     return tamaas
 
 
-def _plain(v):
-    """A JSON-ready copy: finite floats or None, lists for tuples, Python scalars."""
-    if isinstance(v, dict):
-        return {str(k): _plain(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
-    if isinstance(v, (bool, np.bool_)):
-        return bool(v)
-    if isinstance(v, (int, np.integer)):
-        return int(v)
-    if isinstance(v, (float, np.floating)):
-        v = float(v)
-        return v if math.isfinite(v) else None
-    return v
-
-
 # ----------------------------------------------------------------------------- results
-@dataclass(frozen=True)
-class Patch:
-    """One contact patch (positions x/λ in the crest frame).
-
-    Attributes
-    ----------
-    trailing_edge, leading_edge : float
-        The −x and +x edges, estimated between grid nodes (leading > trailing; may straddle ±½).
-    width : float
-        leading − trailing (2a/λ).
-    load : float
-        The part of p̃∞ the patch carries.
-    centroid : float
-        x/λ of the pressure centroid over the patch's nodes (full contact: the phase of the
-        pressure's first harmonic over 2π).
-    summit : float
-        x/λ of the highest profile point in the patch (0, the crest, when it is inside).
-    ka, ke, ke_hat : float
-        π·width, 2π(centre − summit) (None in full contact), 2π(centroid − summit).
-    """
-
-    trailing_edge: float
-    leading_edge: float
-    width: float
-    load: float
-    centroid: float
-    summit: float
-    ka: float
-    ke: float | None
-    ke_hat: float
-
-
 @dataclass(frozen=True)
 class TamaasResult:
     """One operating point run by Tamaas to steady sliding (the project's result protocol).

@@ -1,0 +1,68 @@
+"""The result protocol both roads (and the peers) share: the scalar keys, the JSON helper and the
+contact patch.  No numerics here.
+
+Keys, units and signs as in ``docs/conventions.md`` ('Outputs: the scalars of one operating
+point'); positions x/λ in the crest frame.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+#: the eight scalars of one operating point, in the order of the conventions
+SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
+               "mu")
+
+
+def _plain(v, *, keep_nonfinite=False):
+    """A JSON-ready copy: numpy scalars as Python, tuples as lists, dict keys as str.
+
+    Non-finite floats become None (a record serialisable with ``allow_nan=False``), unless
+    ``keep_nonfinite`` (for a checker that must still see them).
+    """
+    if isinstance(v, dict):
+        return {str(k): _plain(x, keep_nonfinite=keep_nonfinite) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_plain(x, keep_nonfinite=keep_nonfinite) for x in v]
+    if isinstance(v, (bool, np.bool_)):
+        return bool(v)
+    if isinstance(v, (int, np.integer)):
+        return int(v)
+    if isinstance(v, (float, np.floating)):
+        v = float(v)
+        return v if keep_nonfinite or math.isfinite(v) else None
+    return v
+
+
+@dataclass(frozen=True)
+class Patch:
+    """One contact patch (positions x/λ, crest frame).
+
+    Attributes
+    ----------
+    trailing_edge, leading_edge : float
+        The −x and +x edges (leading > trailing; the pair may straddle ±½).
+    width : float
+        leading − trailing, in wavelengths (2a/λ).
+    load : float
+        The part of p̃∞ the patch carries (the patches' loads add up to p̃∞).
+    centroid : float
+        x/λ of the pressure centroid over the patch (full contact: of the window centred on the
+        pressure maximum, see the conventions).
+    summit : float
+        x/λ of the highest profile point inside the patch (0, the crest, for the sinusoid).
+    ka, ke, ke_hat : float
+        π·width, 2π(centre − summit) (None in full contact), 2π(centroid − summit).
+    """
+
+    trailing_edge: float
+    leading_edge: float
+    width: float
+    load: float
+    centroid: float
+    summit: float
+    ka: float
+    ke: float | None
+    ke_hat: float
