@@ -15,7 +15,17 @@ Units (stated once): positions ``X = x/lambda`` with the crest of the sinusoid a
 ``tau_ref = tau`` (the creep time), so ``load`` is the paper's p~ and ``speed``
 its V/V0.  Signs: pressure positive in compression, displacement positive into
 the body, the leading edge of a contact is its +x edge.
+
+The public shape is the semi-analytic road's: ``solve`` returns a `BemResult` with the result
+protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
+``error_estimate``); ``sweep`` tabulates a grid of points; ``solve_si`` takes SI data;
+``ACCEPTED`` lists the range of every input and why, ``validate`` checks them (``solve`` calls
+it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.
 """
+from viscosine import Fields
+
+from ._accepted import ACCEPTED, MAX_NODES, validate
+from ._front import solve_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
 from ._result import BemResult, Patch
@@ -48,5 +58,6 @@ def influence_coefficients(material, speed, nodes):
     return _coefficients(material.j_plus, material.terms, speed, nodes)
 
 
-__all__ = ["BemResult", "Harmonics", "Patch", "Prony", "SampledProfile", "Sinusoid",
-           "influence_coefficients", "read_profile", "read_prony", "solve"]
+__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "MAX_NODES", "Patch", "Prony",
+           "SampledProfile", "Sinusoid", "influence_coefficients", "read_profile", "read_prony",
+           "solve", "solve_si", "sweep", "validate"]

@@ -48,6 +48,9 @@ class Prony:
     J0: float
     J: tuple = ()
     tau: tuple = ()
+    #: E∞/E0 exactly as given to `standard_linear_solid` (None for any other series); it is
+    #: reported as given, not recomputed from the compliances (which rounds 3 to 3.000…01)
+    ratio: float | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
         try:
@@ -72,6 +75,12 @@ class Prony:
         if not j0 - sum(jj) > 0.0:
             raise _bad("J0", self.J0, f"J(0+) = J0 - sum(J_i) = {j0 - sum(jj)!r} must be > 0 "
                        "(a creep function starts at a positive instantaneous compliance)")
+        if self.ratio is not None:
+            r = float(self.ratio)
+            if (j0, jj, tt) != (1.0, (1.0 - 1.0 / r,), (1.0,)):
+                raise _bad("ratio", self.ratio, "the E∞/E0 of this series: use "
+                           "Prony.standard_linear_solid(ratio)")
+            object.__setattr__(self, "ratio", r)
         object.__setattr__(self, "J0", j0)
         object.__setattr__(self, "J", jj)
         object.__setattr__(self, "tau", tt)
@@ -89,7 +98,7 @@ class Prony:
             raise _bad("ratio", ratio, "a finite E_inf/E0 >= 1") from None
         if not math.isfinite(r) or r < 1.0:
             raise _bad("ratio", ratio, "a finite E_inf/E0 >= 1")
-        return cls(1.0, (1.0 - 1.0 / r,), (1.0,))
+        return cls(1.0, (1.0 - 1.0 / r,), (1.0,), ratio=r)
 
     @property
     def j_plus(self) -> float:
@@ -111,9 +120,14 @@ class Prony:
         ``w tau_R / (2 pi)`` wavelengths behind each edge (the layer the mesh must resolve).
         """
         from scipy.optimize import brentq
-        terms = [(j, t) for j, t in self.terms if j > 0.0]
+        merged = {}
+        for j, t in self.terms:  # equal times are one term (and would make an empty bracket)
+            if j > 0.0:
+                merged[t] = merged.get(t, 0.0) + j
+        terms = sorted(merged.items(), key=lambda jt: jt[0])
         if not terms:
             return ()
+        terms = [(j, t) for t, j in terms]
         f = lambda s: self.j_plus + sum(j / (1.0 + s * t) for j, t in terms)
         poles = sorted(-1.0 / t for _, t in terms)
         out = []
@@ -122,9 +136,20 @@ class Prony:
             lo *= 2.0
         edges = [lo] + poles
         for a, b in zip(edges[:-1], edges[1:]):
-            span = b - a
-            # f is +∞ just right of a pole and −∞ just left of the next: bracket inside (a, b)
-            ta, tb = a + 1e-12 * span, b - 1e-12 * span
+            # f decreases from +∞ just right of a pole to −∞ just left of the next: step in from
+            # each end until the sign is right (the root may sit much nearer one pole than the
+            # span between them, e.g. for times decades apart or a small term)
+            if a == lo:
+                ta = lo  # f(lo) > 0 by the loop above
+            else:
+                d = 0.5 * (b - a)
+                while f(a + d) <= 0.0 and a + d != a:
+                    d *= 0.5
+                ta = a + d
+            d = 0.5 * (b - a)
+            while f(b - d) >= 0.0 and b - d != b:
+                d *= 0.5
+            tb = b - d
             out.append(-1.0 / brentq(f, ta, tb, xtol=1e-15 * abs(b), rtol=1e-15))
         return tuple(sorted(out))
 
@@ -318,13 +343,38 @@ class SampledProfile(_Profile):
 # --------------------------------------------------------------------------
 # Files
 # --------------------------------------------------------------------------
-def _rows(path) -> list[list[str]]:
+def _rows(path, option) -> list[list[str]]:
+    """The non-comment lines of a UTF-8 text file, split on commas and blanks; a ValueError
+    naming the file when it is binary, not UTF-8 or holds no data."""
+    data = Path(path).read_bytes()
+    if b"\0" in data:
+        raise _bad(option, str(path), "a UTF-8 text file (this one is binary: NUL bytes)")
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise _bad(option, str(path), f"a UTF-8 text file (byte {exc.start} is not UTF-8)") from None
     rows = []
-    for raw in Path(path).read_text().splitlines():
+    for raw in text.lstrip("\ufeff").splitlines():
         line = raw.split("#", 1)[0].strip()
         if line:
             rows.append(line.replace(",", " ").split())
+    if not rows:
+        raise _bad(option, str(path), "a file with data (this one is empty or only comments)")
     return rows
+
+
+def _numbers(option, path, tokens):
+    """Floats of the tokens; a ValueError naming the file for a non-numeric or non-finite one."""
+    out = []
+    for t in tokens:
+        try:
+            v = float(t)
+        except ValueError:
+            raise _bad(option, str(path), f"numeric fields ({t!r} is not a number)") from None
+        if not math.isfinite(v):
+            raise _bad(option, str(path), f"finite numbers ({t!r} is not finite)")
+        out.append(v)
+    return out
 
 
 def _is_number(tok: str) -> bool:
@@ -343,14 +393,16 @@ def read_profile(path) -> SampledProfile:
     ``x_over_lambda,ky``).  Either one column, the heights ``k y`` at
     ``X_j = j/M - 1/2`` (j = 0..M-1), or two columns ``x_over_lambda, ky`` whose
     first column must be exactly those positions (equally spaced, one period, the
-    end point X = 1/2 not repeated).  At least 8 samples.
+    end point X = 1/2 not repeated).  At least 8 samples.  The file is read as UTF-8
+    text; a binary, non-UTF-8 or empty file, or a non-finite value, is refused with a
+    ValueError naming the file.
 
     Returns
     -------
     SampledProfile
     """
-    rows = _rows(path)
-    if rows and not all(_is_number(t) for t in rows[0]):
+    rows = _rows(path, "profile")
+    if not all(_is_number(t) for t in rows[0]):
         rows = rows[1:]
     if not rows:
         raise _bad("profile", str(path), "a file with at least 8 samples of k*y")
@@ -358,10 +410,7 @@ def read_profile(path) -> SampledProfile:
     if len(width) != 1 or width.pop() not in (1, 2):
         raise _bad("profile", str(path), "one column (k*y) or two columns (x_over_lambda, k*y) "
                    "on every line")
-    try:
-        data = np.array([[float(t) for t in r] for r in rows])
-    except ValueError:
-        raise _bad("profile", str(path), "numeric samples") from None
+    data = np.array([_numbers("profile", path, r) for r in rows])
     if data.shape[1] == 2:
         x = data[:, 0]
         m = x.size
@@ -388,20 +437,18 @@ def read_prony(path) -> Prony:
 
     The ``J0`` line is required and comes first; there may be no terms (an
     elastic material).  J(t) = J0 - sum_i J_i exp(-t/tau_i), tau_i are
-    retardation (creep) times.
+    retardation (creep) times.  The file is read as UTF-8 text; a binary, non-UTF-8 or
+    empty file, or a non-finite value, is refused with a ValueError naming the file.
 
     Returns
     -------
     Prony
     """
-    rows = _rows(path)
-    if not rows or rows[0][0].lower() != "j0" or len(rows[0]) != 2:
+    rows = _rows(path, "prony")
+    if rows[0][0].lower() != "j0" or len(rows[0]) != 2:
         raise _bad("prony", str(path), "a first line 'J0 <value>' then lines 'J_i tau_i'")
-    try:
-        j0 = float(rows[0][1])
-        terms = [(float(r[0]), float(r[1])) for r in rows[1:]]
-    except (ValueError, IndexError):
-        raise _bad("prony", str(path), "numeric 'J0 <value>' and 'J_i tau_i' lines") from None
     if any(len(r) != 2 for r in rows[1:]):
         raise _bad("prony", str(path), "exactly two numbers 'J_i tau_i' per term line")
+    (j0,) = _numbers("prony", path, rows[0][1:])
+    terms = [tuple(_numbers("prony", path, r)) for r in rows[1:]]
     return Prony(j0, tuple(t[0] for t in terms), tuple(t[1] for t in terms))

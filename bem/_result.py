@@ -1,43 +1,44 @@
-"""Result objects of :func:`bem.solve` (frozen, SciPy-like)."""
+"""Result objects of :func:`bem.solve` (frozen, SciPy-like), with the result protocol of the
+semi-analytic road (`scalars`, `as_dict`, `fields`, patches, diagnostics)."""
 from __future__ import annotations
 
 import math
-
-from dataclasses import dataclass, field
+from dataclasses import asdict, dataclass, field
 from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
 
+import viscosine
+from viscosine import Fields, _protocol
+from viscosine._protocol import SCALAR_KEYS, _plain
+
 
 @dataclass(frozen=True)
-class Patch:
-    """One contact patch (positions in wavelengths, X = x/lambda, crest at 0).
+class Patch(_protocol.Patch):
+    """One contact patch (positions x/λ, crest at 0): the protocol's patch plus its panels.
 
     Attributes
     ----------
     trailing_edge, leading_edge : float
-        Sub-panel estimates of the -x and +x edges (leading_edge > trailing_edge;
-        the pair may straddle X = +-1/2).
-    ka : float
-        k a, with 2a the patch width.
-    ke : float
-        k e: offset of the patch centre from X = 0, positive toward +x (leading).
-    ke_hat : float
-        k e_hat: offset of the pressure centroid over the patch from X = 0.
+        Sub-panel estimates of the −x and +x edges (leading > trailing; the pair may straddle
+        ±½); in full contact −½ and ½.
+    width : float
+        leading − trailing (2a/λ).
     load : float
-        The patch's share of the mean pressure (sum over the patch / N).
+        The patch's share of the mean pressure (its panels' sum over N).
+    centroid : float
+        x/λ of the pressure centroid over its panels (full contact: summit + kê/2π).
+    summit : float
+        x/λ of the highest profile point inside the patch (0, the crest, for the sinusoid),
+        unwrapped like the edges.
+    ka, ke, ke_hat : float
+        π·width, 2π(centre − summit) (None in full contact), 2π(centroid − summit).
     panels : int
         Active panels in the patch.
     """
 
-    trailing_edge: float
-    leading_edge: float
-    ka: float
-    ke: float
-    ke_hat: float
-    load: float
-    panels: int
+    panels: int = 0
 
 
 def _frozen_array(a) -> np.ndarray:
@@ -57,12 +58,13 @@ class BemResult:
     Attributes
     ----------
     success : bool
-        True when the active set converged and the last linear solve met ``tol``.
-        When False, the scalars and fields are the last iterate and are not an
-        answer; ``message`` gives the residuals.
+        True when the active set converged, the last linear solve met ``tol`` and the answer
+        passed the validity gate (every scalar finite, 0 < Δ/h ≤ 1, 0 < ka ≤ π, τf, μ ≥ 0,
+        σ ≥ 0, gap ≥ 0, mean σ = load).  When False, the scalars and fields are the last
+        iterate and are not an answer; ``message`` says why (with the residuals).
     status : int
         0 converged; 1 outer iterations exhausted; 2 a Krylov solve failed;
-        3 the active set cycled.
+        3 the active set cycled; 4 converged but physically invalid.
     message : str
     nit : int
         Active-set (outer) iterations on the finest grid.
@@ -84,6 +86,26 @@ class BemResult:
         (`Prony.relaxation_times`); inf at speed 0.  Below about 3 the contact edges carry an
         error of the order of the layer: e.g. at V/V0 = 1e-6 the true half-width is
         ka_W − (1 − 1/ρ)(V/V0)/2, a shift no N ≤ 2^20 resolves; the message says so below 1.
+    full_contact, contact_fraction, ka, ke, ke_hat, penetration, separation, tau_f, mu
+        The scalars of the conventions.  ka, ke, kê are those of the single patch, measured
+        from its summit; with several patches they are None (no single patch describes the
+        contact; see ``patches``); ke is None in full contact.
+    patches : tuple of Patch
+        One per contact patch (full contact: one spanning the period).
+    control, asked
+        ``"load"`` or ``"penetration"`` and the value asked for.
+    ratio, hk
+        E∞/E0 as given for the standard linear solid (None for any other Prony series) and hk
+        of the sinusoid (None for any other profile).
+    warnings : tuple of str
+        Caveats (a patch spanning few panels, an unresolved memory layer).
+    error_estimate : mapping or None
+        The solver's estimate of the discretisation error of each scalar (absolute for ka,
+        ke, kê; relative for penetration, tau_f, mu, contact_fraction), None when it has none.
+    rtol : float or None
+        The accuracy target of an adaptive mesh; None when ``nodes`` fixed the mesh.
+    extra_diagnostics : mapping
+        Anything else the solver reports; part of ``diagnostics``.
     """
 
     success: bool
@@ -99,9 +121,9 @@ class BemResult:
     load: float
     full_contact: bool
     contact_fraction: float
-    ka: float
+    ka: float | None
     ke: float | None
-    ke_hat: float
+    ke_hat: float | None
     penetration: float
     tau_f: float
     mu: float
@@ -113,22 +135,109 @@ class BemResult:
     patches: tuple = ()
     levels: tuple = ()
     memory_layer_panels: float = math.inf
+    control: str = "load"
+    asked: float | None = None
+    ratio: float | None = None
+    hk: float | None = None
+    warnings: tuple = ()
+    error_estimate: Mapping | None = None
+    rtol: float | None = None
+    extra_diagnostics: Mapping = field(default_factory=dict, repr=False)
 
     def __post_init__(self):
         for name in ("x_over_lambda", "pressure", "displacement", "gap"):
             object.__setattr__(self, name, _frozen_array(getattr(self, name)))
         object.__setattr__(self, "residuals", MappingProxyType(dict(self.residuals)))
         object.__setattr__(self, "inner_iterations", tuple(int(i) for i in self.inner_iterations))
+        object.__setattr__(self, "warnings", tuple(str(w) for w in self.warnings))
+        object.__setattr__(self, "patches", tuple(self.patches))
+        object.__setattr__(self, "extra_diagnostics",
+                           MappingProxyType(dict(self.extra_diagnostics or {})))
+        if self.error_estimate is not None:
+            object.__setattr__(self, "error_estimate",
+                               MappingProxyType(dict(self.error_estimate)))
+
+    # ------------------------------------------------------------------ protocol
+    @property
+    def n_patches(self) -> int:
+        """Number of contact patches per period (1 in full contact)."""
+        return len(self.patches)
+
+    @property
+    def max_pressure(self) -> float:
+        """Largest panel pressure σ(1 − ν²)/E_ref (a collocation value, not interpolated)."""
+        return float(self.pressure.max()) if self.pressure.size else math.nan
+
+    @property
+    def x_max_pressure(self) -> float:
+        """x/λ of the panel centre carrying `max_pressure`."""
+        return float(self.x_over_lambda[int(np.argmax(self.pressure))]) \
+            if self.pressure.size else math.nan
+
+    @property
+    def diagnostics(self) -> dict:
+        """Iterations, residuals and resolution figures of the solve (plain dict)."""
+        d = {"nit": self.nit, "inner_iterations": list(self.inner_iterations),
+             "residuals": dict(self.residuals), "levels": [list(lv) for lv in self.levels],
+             "memory_layer_panels": self.memory_layer_panels}
+        d.update(self.extra_diagnostics)
+        return d
+
+    def as_dict(self) -> dict:
+        """The JSON record (serialisable with ``allow_nan=False``; non-finite values are None).
+
+        The keys of the semi-analytic road's record plus ``nodes`` and, on an adaptive mesh,
+        ``rtol``.
+        """
+        rec = {"solver": "bem", "version": viscosine.__version__, "control": self.control,
+               "load_asked": self.asked if self.control == "load" else None,
+               "penetration_asked": self.asked if self.control == "penetration" else None,
+               "load": self.load, "speed": self.speed, "ratio": self.ratio, "hk": self.hk,
+               "nodes": self.nodes}
+        if self.rtol is not None:
+            rec["rtol"] = self.rtol
+        rec.update(self.scalars())
+        rec.update({"separation": self.separation, "success": self.success,
+                    "message": self.message, "warnings": list(self.warnings)})
+        if self.success:
+            rec.update({"max_pressure": self.max_pressure, "x_max_pressure": self.x_max_pressure,
+                        "n_patches": self.n_patches,
+                        "patches": [asdict(p) for p in self.patches]})
+        else:
+            rec.update({"max_pressure": None, "x_max_pressure": None, "n_patches": 0,
+                        "patches": []})
+        rec.update({"diagnostics": self.diagnostics,
+                    "error_estimate": None if self.error_estimate is None
+                    else dict(self.error_estimate)})
+        return _plain(rec)
+
+    def fields(self, x_over_lambda=None) -> Fields:
+        """Pressure, displacement and gap over one period.
+
+        Parameters
+        ----------
+        x_over_lambda : array_like, optional
+            Positions x/λ (any real values: the fields are periodic).  Default: the panel
+            centres ``j/N − ½``, where the values are the solver's own.  Elsewhere the four
+            fields are interpolated linearly between panel centres, periodically (which keeps
+            σ ≥ 0 and gap ≥ 0).
+
+        Returns
+        -------
+        viscosine.Fields
+            σ(1 − ν²)/E_ref, v/h (from the mean line of the deformed surface) and gap/h.
+        """
+        if x_over_lambda is None:
+            return Fields(self.x_over_lambda, self.pressure, self.displacement, self.gap)
+        X = np.atleast_1d(np.asarray(x_over_lambda, dtype=float))
+        if X.ndim != 1 or not np.all(np.isfinite(X)):
+            raise ValueError(f"x_over_lambda={x_over_lambda!r} is not allowed: a 1-D array of "
+                             "finite positions x/λ")
+        def interp(a):
+            return np.interp(X, self.x_over_lambda, a, period=1.0)
+
+        return Fields(X, interp(self.pressure), interp(self.displacement), interp(self.gap))
 
     def scalars(self) -> dict:
-        """The output keys of ``conventions.md`` as plain Python values."""
-        return {
-            "full_contact": bool(self.full_contact),
-            "contact_fraction": float(self.contact_fraction),
-            "ka": float(self.ka),
-            "ke": None if self.ke is None else float(self.ke),
-            "ke_hat": float(self.ke_hat),
-            "penetration": float(self.penetration),
-            "tau_f": float(self.tau_f),
-            "mu": float(self.mu),
-        }
+        """The eight scalars of the conventions (plain Python types, None where null)."""
+        return {k: _plain(getattr(self, k)) for k in SCALAR_KEYS}

@@ -31,9 +31,11 @@ import numpy as np
 
 from . import _kernels
 from ._influence import influence_coefficients_nd
+from ._accepted import validate
+from ._assemble import _patches, build_result
 from ._inputs import Prony, Sinusoid, _Profile, _bad
 from ._operator import CirculantOperator, gmres
-from ._result import BemResult, Patch
+from ._result import BemResult
 
 
 # --------------------------------------------------------------------------
@@ -158,118 +160,6 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             "inner": inner, "relres": relres, "status": status, "message": message}
 
 
-# --------------------------------------------------------------------------
-# Contact patches and sub-panel edges
-# --------------------------------------------------------------------------
-def _runs(active: np.ndarray) -> list[tuple[int, int]]:
-    """Cyclic runs of active panels as (first index, length)."""
-    n = active.size
-    if active.all():
-        return [(0, n)]
-    if not active.any():
-        return []
-    start = int(np.flatnonzero(~active)[0])  # rotate so that index `start` is free
-    rolled = np.roll(active, -start)
-    d = np.diff(np.concatenate(([0], rolled.astype(np.int8), [0])))
-    firsts = np.flatnonzero(d == 1)
-    lasts = np.flatnonzero(d == -1)
-    return [((int(f) + start) % n, int(l - f)) for f, l in zip(firsts, lasts)]
-
-
-def _root_near_zero(pos, vals, deg):
-    """Real root nearest 0 of the least-squares polynomial of degree deg through (pos, vals)."""
-    scale = float(np.max(np.abs(pos)))
-    c = np.polynomial.polynomial.polyfit(pos / scale, vals, deg)
-    roots = np.polynomial.polynomial.polyroots(c)
-    roots = roots[np.abs(roots.imag) < 1e-9].real * scale
-    if roots.size == 0:
-        return None
-    return float(roots[np.argmin(np.abs(roots))])
-
-
-def _edge_offset(inside_sq, outside_23, h, nodes):
-    """Offset of a contact edge beyond the centre of the last contact panel.
-
-    inside_sq[m] = sigma^2 at the m-th contact panel counted inward from the edge
-    (m = 0 is the last one, at offset -m h); outside_23[m] = gap^(2/3) at the m-th
-    free panel outward (offset (m + 1) h).  Near an edge sigma ~ d^(1/2) and
-    gap ~ d^(3/2) with analytic corrections, so sigma^2 and gap^(2/3) are analytic
-    with a simple zero at the edge.  The panels right at the edge carry an O(1)
-    relative discretisation error that does not shrink with h, so each is fitted
-    by a cubic over panels at distances sqrt(N)/16 .. sqrt(N)/2 (growing with N,
-    shrinking in wavelengths), and the two zeros are averaged.  Measured on
-    Westergaard's solution the error then falls like N^-1.6 (see the tests).
-    Short patches or gaps fall back to fewer points, and finally to extrapolating
-    sigma^2 linearly from the last two contact panels.
-    """
-    m1 = max(1, int(round(math.sqrt(nodes) / 16.0)))
-    m2 = max(m1 + 6, int(round(math.sqrt(nodes) / 2.0)))
-    est = []
-    for vals, sign, shift in ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0)):
-        avail = vals.size
-        lo, hi = m1, min(m2, avail - 1)
-        if hi - lo < 5:
-            lo, hi = 0, min(m2, avail - 1)
-        if hi - lo < 3:
-            continue
-        m = np.arange(lo, hi + 1)
-        deg = 3 if hi - lo >= 5 else 2
-        root = _root_near_zero(sign * (m + shift) * h, vals[m], deg)
-        if root is not None and -h <= root <= 2.0 * h:
-            est.append(root)
-    if est:
-        return min(max(sum(est) / len(est), -0.5 * h), 1.5 * h)
-    if inside_sq.size >= 2 and inside_sq[1] > inside_sq[0]:
-        return min(h, h * inside_sq[0] / (inside_sq[1] - inside_sq[0]))
-    return 0.5 * h
-
-
-def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h):
-    """(trailing, leading) edges of one patch, unwrapped so that leading > trailing."""
-    n = sigma.size
-    last = first + length - 1
-    half = (length - 1) // 2 + 1
-    ins_lead = sigma[(last - np.arange(half)) % n] ** 2
-    ins_trail = sigma[(first + np.arange(half)) % n] ** 2
-    out_lead = np.abs(gap[(last + 1 + np.arange(max(free_after // 2, 0))) % n]) ** (2.0 / 3.0)
-    out_trail = np.abs(gap[(first - 1 - np.arange(max(free_before // 2, 0))) % n]) ** (2.0 / 3.0)
-    x_first = x[first]
-    x_last = x_first + (length - 1) * h
-    lead = x_last + _edge_offset(ins_lead, out_lead, h, n)
-    trail = x_first - _edge_offset(ins_trail, out_trail, h, n)
-    return trail, lead
-
-
-def _patches(sigma, gap, active, x, h):
-    out = []
-    n = sigma.size
-    runs = _runs(active)
-    for i, (first, length) in enumerate(runs):
-        nxt_first = runs[(i + 1) % len(runs)][0]
-        prv_first, prv_len = runs[i - 1]
-        free_after = (nxt_first - (first + length)) % n
-        free_before = (first - (prv_first + prv_len)) % n
-        if len(runs) == 1:
-            free_after = free_before = n - length
-        trail, lead = _patch_edges(sigma, gap, first, length, free_after, free_before, x, h)
-        shift = -math.floor(0.5 * (trail + lead) + 0.5)  # centre into [-1/2, 1/2)
-        trail += shift
-        lead += shift
-        ids = (first + np.arange(length)) % n
-        xs = x[first] + shift + h * np.arange(length)  # unwrapped centres
-        if xs.mean() - 0.5 * (trail + lead) > 0.5:
-            xs -= 1.0
-        elif xs.mean() - 0.5 * (trail + lead) < -0.5:
-            xs += 1.0
-        w = sigma[ids]
-        load = float(w.sum()) / n
-        centroid = float(np.dot(w, xs) / w.sum()) if w.sum() > 0 else 0.5 * (trail + lead)
-        out.append(Patch(trailing_edge=trail, leading_edge=lead,
-                         ka=math.pi * (lead - trail), ke=math.pi * (trail + lead),
-                         ke_hat=2.0 * math.pi * centroid, load=load, panels=int(length)))
-    return out
-
-
 def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
     """Active set, pressure and separation on a finer grid from a solved coarser one."""
     if prev["active"].all():
@@ -284,40 +174,6 @@ def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
     sp = np.tile(prev["sigma"], 3)
     sigma = np.interp(grid.x, xp, sp) * active
     return active, sigma, prev["s"]
-
-
-# --------------------------------------------------------------------------
-# Friction (mean frictional stress, positive when it resists the motion)
-# --------------------------------------------------------------------------
-def _friction(sigma, y, material: Prony, speed: float):
-    """(dissipation estimate, direct estimate) of tau_f (1 - nu^2)/E_ref.
-
-    tau_f = (1/lambda) int sigma dv/dx dx in the paper (eq. 3.1), negative when it
-    resists; reported with the opposite sign (conventions.md).  With
-    sigma = sum_n sigma_n e^{2 pi i n X} and v_n = (2/|n|) J*(n) sigma_n,
-    -(1/lambda) int sigma v' dx = sum_{n>0} 4 Im J*(n) |sigma_n|^2 (the energy
-    dissipated per unit sliding distance), insensitive to phase errors.
-    Collocation makes the panel values exceed the point values: a mode n of
-    piecewise-constant pressure displaces the collocation points by its symbol
-    times sinc(pi n/N), so the solve returns sigma(X_j)/sinc mode by mode (in
-    real space sigma_j = sigma - h^2 sigma''/24 + ..., the opposite of a panel
-    average); hence sigma_n = DFT_n * sinc(pi n/N).  The direct estimate
-    -(1/2 pi) int sigma d(ky)/dX dX = sum_{n>0} 2 n Im(conj(sigma_n) y_n) uses the
-    profile instead of v (equal on the contact).
-    """
-    n = sigma.size
-    sh = np.fft.rfft(sigma) / n
-    yh = np.fft.rfft(y) / n
-    modes = np.arange(sh.size, dtype=float)
-    sh = sh * np.sinc(modes / n)
-    weight = np.ones_like(modes)
-    weight[0] = 0.0
-    if n % 2 == 0:
-        weight[-1] = 0.5  # Nyquist: +N/2 and -N/2 share one discrete mode
-    jim = material.jstar(modes, speed).imag
-    diss = float(np.sum(weight * 4.0 * jim * np.abs(sh) ** 2))
-    direct = float(np.sum(weight * 2.0 * modes * np.imag(np.conj(sh) * yh)))
-    return diss, direct
 
 
 # --------------------------------------------------------------------------
@@ -394,6 +250,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     ----------
     Eq. (2.2)-(2.5) (operator), (3.1) (friction), Appendix B (full contact).
     """
+    validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
+             profile=profile, material=material, nodes=nodes)
     if profile is None:
         profile = Sinusoid(1.0 if hk is None else hk)
     elif hk is not None:
@@ -424,6 +282,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     max_inner = _check_positive_int("max_inner", max_inner, 1)
 
     amp = float(profile.amplitude)
+    control, asked = ("load", load) if load is not None else ("penetration", penetration)
     sep = None if penetration is None else amp * (1.0 - penetration)
 
     fine = _Grid(profile, material, speed, nodes)
@@ -441,8 +300,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         res = {"sigma": full_start, "s": float(fine.y.mean()), "active": np.ones(nodes, np.bool_),
                "gap": fine.op.apply(full_start) - fine.y + float(fine.y.mean()), "nit": 1,
                "inner": [0], "relres": 0.0, "status": 0, "message": "converged"}
-        return _build_result(res, fine, profile, material, speed, amp, load,
-                             [(nodes, 1, (0,))])
+        return build_result(res, fine, profile, material, speed, amp, load,
+                            [(nodes, 1, (0,))], asked=asked, control=control)
 
     sizes = [nodes]
     while nested and sizes[-1] // level_ratio >= coarsest:
@@ -475,62 +334,5 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         history.append((n, res["nit"], tuple(res["inner"])))
         prev, prev_grid = res, grid
 
-    return _build_result(prev, prev_grid, profile, material, speed, amp, load, history)
-
-
-def _build_result(res, grid: _Grid, profile, material, speed, amp, load, history):
-    sigma = res["sigma"]
-    active = res["active"]
-    s = float(res["s"])
-    gap = res["gap"]
-    n = grid.n
-    out = np.empty(4)
-    _kernels.contact_residuals(active, sigma, gap, out)
-    mean_p = float(sigma.mean())
-    target = load if load is not None else mean_p
-    smax = float(sigma.max()) if sigma.size else 0.0
-    tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
-    residuals = {
-        "complementarity": float(out[0]) / amp,
-        "contact_gap": float(out[1]) / amp,
-        "interpenetration": float(out[2]) / amp,
-        "negative_pressure": float(out[3]) / smax if smax > 0 else float(out[3]),
-        "load_balance": abs(mean_p - target) / target if target > 0 else abs(mean_p),
-        "krylov": float(res["relres"]) / amp,
-        "friction_mismatch": abs(tau_direct - tau_f) / abs(tau_f) if tau_f != 0 else 0.0,
-    }
-    # panels across the thinnest pressure memory layer w τ_R (only reported, not a residual
-    # that gates success): below one panel the edges carry an error of the order of the layer
-    tau_r = material.relaxation_times
-    layer = speed * min(tau_r) * n / (2.0 * math.pi) if (tau_r and speed > 0.0) else math.inf
-    full = bool(active.all())
-    if full:
-        ka, ke, frac, patches = math.pi, None, 1.0, ()
-        yh = np.fft.rfft(grid.y)
-        sh = np.fft.rfft(sigma)
-        nstar = int(np.argmax(np.abs(yh[1:]))) + 1
-        ke_hat = float(np.angle(yh[nstar] / sh[nstar])) / nstar
-    else:
-        patches = tuple(_patches(sigma, gap, active, grid.x, grid.h))
-        main = max(patches, key=lambda p: p.load)
-        ka, ke, ke_hat = main.ka, main.ke, main.ke_hat
-        frac = float(sum(p.leading_edge - p.trailing_edge for p in patches))
-    disp = grid.op.apply(sigma) / amp
-    gap_out = np.where(active, 0.0, gap) / amp
-    status = int(res["status"])
-    success = status == 0
-    message = res["message"]
-    if not success:
-        message = (f"not converged: {message}; residuals "
-                   + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
-    elif layer < 1.0 and not full:
-        message += (f"; the pressure memory layer spans {layer:.2g} panel: contact edges carry an "
-                    "error of the order of the layer (refine N to resolve it)")
-    return BemResult(
-        success=success, status=status, message=message, nit=int(res["nit"]),
-        inner_iterations=tuple(res["inner"]), residuals=residuals, nodes=n, speed=speed,
-        material=material, profile=profile, load=mean_p, full_contact=full,
-        contact_fraction=frac, ka=ka, ke=ke, ke_hat=ke_hat,
-        penetration=(amp - s) / amp, tau_f=tau_f, mu=tau_f / mean_p if mean_p > 0 else float("nan"),
-        separation=s / amp, x_over_lambda=grid.x, pressure=sigma, displacement=disp,
-        gap=gap_out, patches=patches, levels=tuple(history), memory_layer_panels=layer)
+    return build_result(prev, prev_grid, profile, material, speed, amp, load, history,
+                        asked=asked, control=control)

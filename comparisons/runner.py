@@ -36,13 +36,12 @@ import numpy as np
 
 import viscosine
 from viscosine import Fields
+from viscosine._protocol import SCALAR_KEYS
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
 #: read from bem.solve when it has one, so that the two cannot drift apart)
 DEFAULTS = {"ratio": 3.0, "hk": 1.0, "rtol": 1e-6, "field_points": 1024,
             "nodes_without_adaptive": 4096}
-#: BEM meshes refused beyond this when the BEM does not export its own cap (bem.ACCEPTED)
-FALLBACK_MAX_NODES = 2 ** 20
 #: points of the analytic fields (--nodes with --fields): 8 … 2^20 (about 10 µs per point)
 FIELD_POINTS = (8, 2 ** 20)
 #: the last line of defence: round-off allowances of the physical checks
@@ -52,8 +51,6 @@ CONTROL_MISMATCH = 1e-6    # achieved load (or Δ/h) against the one asked for, 
 
 SPEC_KEYS = ("solver", "load", "penetration", "speed", "ratio", "hk", "nodes", "rtol", "max_nodes",
              "profile", "prony", "field_points")
-SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
-               "mu")
 
 
 class InputError(ValueError):
@@ -80,12 +77,10 @@ def bem_default_rtol():
 
 
 def bem_nodes_range():
-    """(smallest, largest) N the BEM accepts: its own ``ACCEPTED['nodes']`` when exported."""
+    """(smallest, largest) N the BEM accepts: its own ``ACCEPTED['nodes']``."""
     import bem
-    acc = getattr(bem, "ACCEPTED", {}).get("nodes")
-    if acc is not None:
-        return int(acc[0]), int(acc[1])
-    return 8, FALLBACK_MAX_NODES
+    low, high, _ = bem.ACCEPTED["nodes"]
+    return int(low), int(high)
 
 
 # ------------------------------------------------------------------------------ specs
@@ -281,33 +276,12 @@ def _check_int(name, value, low, high, what):
 
 def _validate_bem(spec):
     import bem
-    low, high = bem_nodes_range()
-    for name in ("nodes", "max_nodes"):
-        if spec.get(name) is not None:
-            _check_int(name, spec[name], low, high, "panels per period of the BEM")
     kw = dict(_controls(spec), speed=spec["speed"])
     kw.update(_bem_problem(spec))
     for name in ("nodes", "rtol", "max_nodes"):
         if spec.get(name) is not None:
             kw[name] = spec[name]
-    check = getattr(bem, "validate", None)
-    if check is not None:
-        params = inspect.signature(check).parameters
-        if not any(p.kind is p.VAR_KEYWORD for p in params.values()):
-            kw = {k: v for k, v in kw.items() if k in params}
-        check(**kw)
-        return
-    # a BEM without `validate`: the same checks as at the entry of bem.solve
-    from bem._solver import _check_real
-    if "profile" not in kw:
-        bem.Sinusoid(kw["hk"])
-    if "material" not in kw:
-        bem.Prony.standard_linear_solid(kw["ratio"])
-    _check_real("speed", kw["speed"], "a finite speed >= 0", lambda v: v >= 0.0)
-    if "load" in kw:
-        _check_real("load", kw["load"], "a finite mean pressure > 0", lambda v: v > 0.0)
-    else:
-        _check_real("penetration", kw["penetration"], "Delta/h in (0, 1]", lambda v: 0.0 < v <= 1.0)
+    bem.validate(**kw)
 
 
 def _bem_problem(spec):
@@ -335,32 +309,11 @@ class Solved(NamedTuple):
     constraints: dict | None  # min_pressure (over a pressure scale), min_gap (over h), mean_pressure_error
 
 
-def _plain(v):
-    """JSON-ready copy: numpy scalars as Python, tuples as lists, non-finite floats kept (checked)."""
-    if isinstance(v, dict):
-        return {str(k): _plain(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_plain(x) for x in v]
-    if isinstance(v, (bool, np.bool_)):
-        return bool(v)
-    if isinstance(v, (int, np.integer)):
-        return int(v)
-    if isinstance(v, (float, np.floating)):
-        return float(v)
-    return v
-
-
 def _analytic(spec, want_fields, deep):
     """Adapter of the semi-analytic road (``analytic.solve`` → record, fields, constraints)."""
     import analytic
     sol = analytic.solve(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"])
-    rec = _plain(sol.as_dict())
-    if "version" not in rec:  # a road from before the result protocol: complete its record
-        rec.update(version=viscosine.__version__, success=bool(sol.success),
-                   message=str(sol.message), warnings=[], separation=_plain(sol.separation),
-                   diagnostics={"nit": sol.nit, "residuals": _plain(dict(sol.residuals))},
-                   error_estimate=None, max_pressure=None, x_max_pressure=None, n_patches=None,
-                   patches=None)
+    rec = sol.as_dict()
     if not sol.success:
         return Solved(rec, None, None)
     f = None
@@ -384,17 +337,13 @@ def _bem(spec, want_fields, deep):
         if spec.get(name) is not None:
             kw[name] = spec[name]
     res = bem.solve(**kw)
-    if hasattr(res, "as_dict"):
-        rec = _plain(res.as_dict())
-    else:  # a BEM from before the result protocol: build its record here
-        rec = _bem_record(res, spec)
+    rec = res.as_dict()
     rec.setdefault("iterations", int(res.nit))
     rec["profile_file"] = spec.get("profile")
     rec["prony_file"] = spec.get("prony")
     if not res.success:
         return Solved(rec, None, None)
-    f = res.fields() if hasattr(res, "fields") else Fields(res.x_over_lambda, res.pressure,
-                                                           res.displacement, res.gap)
+    f = res.fields()
     # the panel values are at hand: the constraints cost nothing on this road
     smax = float(np.max(f.pressure)) if f.pressure.size else 0.0
     load = rec.get("load") or float(res.load)
@@ -402,29 +351,6 @@ def _bem(spec, want_fields, deep):
          "min_gap": float(np.min(f.gap)),
          "mean_pressure_error": abs(float(np.mean(f.pressure)) / load - 1.0)}
     return Solved(rec, f if want_fields else None, c)
-
-
-def _bem_record(res, spec):
-    """The JSON record of a BEM result without ``as_dict`` (before the result protocol)."""
-    load = spec["load"] if spec.get("load") is not None else float(res.load)
-    rec = {"solver": "bem", "version": viscosine.__version__, "load": load, "speed": spec["speed"],
-           "ratio": spec["ratio"], "hk": spec["hk"], "nodes": int(res.nodes),
-           "iterations": int(res.nit)}
-    rec.update(_plain(res.scalars()))
-    patches = list(res.patches)
-    if len(patches) > 1:  # no single patch describes the contact
-        rec.update(ka=None, ke=None, ke_hat=None)
-    j = int(np.argmax(res.pressure))
-    rec.update(separation=float(res.separation), success=bool(res.success),
-               message=str(res.message), warnings=[],
-               max_pressure=float(res.pressure[j]), x_max_pressure=float(res.x_over_lambda[j]),
-               n_patches=len(patches) if patches else 1,
-               patches=[_plain(p.__dict__) for p in patches],
-               diagnostics=_plain({"nit": res.nit, "residuals": dict(res.residuals),
-                                   "levels": res.levels,
-                                   "memory_layer_panels": res.memory_layer_panels}),
-               error_estimate=None)
-    return rec
 
 
 ROADS = {"analytic": _analytic, "bem": _bem}

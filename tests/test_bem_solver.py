@@ -200,8 +200,14 @@ def test_several_patches_per_period():
     assert centres[0] == pytest.approx(-0.5, abs=1e-9)  # the patch across X = +-1/2
     assert centres[1] == pytest.approx(-centres[3], abs=1e-6) and abs(centres[2]) < 1e-9
     assert sum(p.load for p in r.patches) == pytest.approx(r.load, rel=1e-12)
-    main = max(r.patches, key=lambda p: p.load)
-    assert r.ka == main.ka and abs(main.ke) < 1e-7
+    # several patches: no single ka, ke, kê; each patch's ke is measured from its own summit
+    assert r.ka is None and r.ke is None and r.ke_hat is None and r.n_patches == 4
+    by_centre = sorted(r.patches, key=lambda p: p.trailing_edge + p.leading_edge)
+    for p in r.patches:
+        assert p.trailing_edge < p.summit < p.leading_edge
+    assert abs(by_centre[0].ke) < 1e-7 and abs(by_centre[2].ke) < 1e-7  # symmetric about X = 0, ½
+    assert by_centre[1].ke == pytest.approx(-by_centre[3].ke, abs=1e-7)  # mirror images
+    assert by_centre[1].summit == pytest.approx(-by_centre[3].summit, abs=1e-12)
     assert r.contact_fraction == pytest.approx(
         sum(p.leading_edge - p.trailing_edge for p in r.patches), rel=1e-15)
     # viscoelastic: the outer patches differ (the material remembers the crest)

@@ -37,7 +37,7 @@ def _run(capsys, *argv):
 
 def _asked(r):
     """The (load, speed) a record answers (a road may report the achieved load apart)."""
-    return (r.get("load_asked") or r.get("load_requested") or r["load"], r["speed"])
+    return (r.get("load_asked") or r["load"], r["speed"])
 
 
 def _read_csv(path):
