@@ -18,6 +18,8 @@ from ._result import BemResult, Patch
 _TWO_PI = 2.0 * math.pi
 #: status of a converged result that fails the validity gate
 STATUS_INVALID = 4
+#: the adaptive mesh reached max_nodes before its estimated errors met rtol
+STATUS_TARGET = 5
 #: relative round-off allowed on σ ≥ 0 (over max σ), gap ≥ 0 (over h), Δ/h ≤ 1, ka ≤ π
 ROUNDOFF = 1e-12
 #: mean σ = load, relative (the Krylov tolerance bounds the load equation well below this)
@@ -109,35 +111,44 @@ def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h):
 
 
 def _summit(profile, y, ids, xs, trail, lead):
-    """x/λ of the highest profile point in [trail, lead] (unwrapped like the patch).
+    """x/λ of the summit a patch sits on: the local maximum of the profile reached by climbing
+    from the highest point of the patch (unwrapped like the patch).  At high speed a contact
+    moves ahead of its summit and may not contain it, so the summit is not sought inside
+    [trail, lead] only.
 
-    The sinusoid's crest is X = 0 exactly (modulo 1); any other profile: the highest panel
-    centre of the patch polished by Newton's method on its trigonometric series, against the
-    two edges.
+    The sinusoid's crest nearest the patch centre is exact (X = 0 modulo 1); any other profile:
+    the highest panel centre of the patch, moved uphill panel by panel (periodically) to a
+    local maximum of the samples and polished by Newton's method on the trigonometric series.
     """
     if isinstance(profile, Sinusoid):
-        k = math.ceil(trail)
-        if k <= lead:
-            return float(k)
-        return trail if abs(trail - round(trail)) < abs(lead - round(lead)) else lead
+        return float(round(0.5 * (trail + lead)))
     n, c = profile._spectrum()
+    size = y.size
+    h = 1.0 / size
 
     def height(t, der=0):  # the series is in t = X + 1/2
         return float(_direct(n, c, t + 0.5, der)[0])
 
     j = int(np.argmax(y[ids]))
+    i = int(ids[j])
     t = float(xs[j])
-    h = 1.0 / y.size
+    for _ in range(size):  # discrete ascent over the periodic samples
+        if y[(i + 1) % size] > y[i]:
+            i, t = (i + 1) % size, t + h
+        elif y[(i - 1) % size] > y[i]:
+            i, t = (i - 1) % size, t - h
+        else:
+            break
+    start = t
     for _ in range(40):
         d1, d2 = height(t, 1), height(t, 2)
         if d2 >= 0.0:
             break
         step = float(np.clip(-d1 / d2, -h, h))
-        t = min(max(t + step, trail), lead)
+        t = min(max(t + step, start - h), start + h)
         if abs(step) < 1e-16:
             break
-    best = max((t, trail, lead), key=height)
-    return best if height(best) > float(y[ids][j]) else float(xs[j])
+    return t if height(t) >= height(start) else start
 
 
 def _patches(sigma, gap, active, x, h, profile=None, y=None):
@@ -355,7 +366,10 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     status = int(res["status"])
     success = status == 0
     message = res["message"]
-    if not success:
+    if status == STATUS_TARGET:
+        message = (f"{message}; residuals of N={n}: "
+                   + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
+    elif not success:
         message = (f"not converged: {message}; residuals "
                    + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
     else:

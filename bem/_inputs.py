@@ -36,7 +36,7 @@ class Prony:
         Prony amplitudes ``J_i >= 0``, in ``1/E_ref``.
     tau : sequence of float
         Retardation (creep) times ``tau_i > 0``, in ``tau_ref`` -- not relaxation
-        times (see paper-notes item 11).
+        times (docs/conventions.md: creep and relaxation times).
 
     Raises
     ------

@@ -64,7 +64,8 @@ class BemResult:
         iterate and are not an answer; ``message`` says why (with the residuals).
     status : int
         0 converged; 1 outer iterations exhausted; 2 a Krylov solve failed;
-        3 the active set cycled; 4 converged but physically invalid.
+        3 the active set cycled; 4 converged but physically invalid; 5 the adaptive mesh
+        reached ``max_nodes`` before its estimated errors met ``rtol``.
     message : str
     nit : int
         Active-set (outer) iterations on the finest grid.

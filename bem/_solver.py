@@ -26,13 +26,14 @@ from __future__ import annotations
 
 import math
 import numbers
+import os
 
 import numpy as np
 
 from . import _kernels
 from ._influence import influence_coefficients_nd
-from ._accepted import validate
-from ._assemble import _patches, build_result
+from ._accepted import MAX_NODES, validate
+from ._assemble import STATUS_TARGET, _friction, _full_patch, _patches, build_result
 from ._inputs import Prony, Sinusoid, _Profile, _bad
 from ._operator import CirculantOperator, gmres
 from ._result import BemResult
@@ -74,25 +75,28 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
     if load is not None:
         q = pinv(np.ones(na))
         beta = q.sum() / n
+        # the load equation is scaled by h k/load so that the absolute Krylov tolerance
+        # (tol h k) bounds its error relative to the load, whatever the load
+        f = grid.amp / load
 
         def matvec(z):
             e = np.zeros(n)
             e[idx] = z[:na]
             out = np.empty(na + 1)
             out[:na] = op.apply(e)[idx] + z[na]
-            out[na] = z[:na].sum() / n
+            out[na] = f * z[:na].sum() / n
             return out
 
         def precond(r):
             # block elimination of s with P = R C^+ R^T in place of C_AA^-1
             u = pinv(r[:na])
-            t = (u.sum() / n - r[na]) / beta
+            t = (u.sum() / n - r[na] / f) / beta
             out = np.empty(na + 1)
             out[:na] = u - t * q
             out[na] = t
             return out
 
-        b = np.append(grid.y[idx], load)
+        b = np.append(grid.y[idx], f * load)
     else:
         def matvec(z):
             e = np.zeros(n)
@@ -199,10 +203,31 @@ def _check_real(name, value, allowed, test):
     return v
 
 
+#: first grid of the refinement sequence (coarser grids only ever gave a start)
+START_NODES = 512
+#: the default accuracy target of the adaptive mesh
+DEFAULT_RTOL = 1e-6
+#: the error estimate is this factor times the first-order bound of the last differences
+ESTIMATE_SAFETY = 1.5
+#: a patch narrower than this many panels on the coarsest grid of an estimate is not resolved
+MIN_PATCH_PANELS = 8
+#: a Prony term's memory length w tau_i/(2 pi) (in wavelengths) is resolved from this many panels
+MIN_MEMORY_PANELS = 4.0
+#: keys of the error estimate: relative for these, absolute for the others
+RELATIVE_KEYS = ("penetration", "tau_f", "mu")
+ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f", "mu")
+
+
 def solve(*, load=None, penetration=None, speed, profile=None, material=None, ratio=None,
-          hk=None, nodes=4096, tol=1e-10, max_outer=50, nested=True, coarsest=256,
-          level_ratio=4, restart=40, max_inner=600) -> BemResult:
+          hk=None, nodes=None, rtol=None, max_nodes=None, tol=1e-10, max_outer=50,
+          restart=16, max_inner=600, nested=True) -> BemResult:
     """Steady sliding of a rigid periodic indenter on a viscoelastic half-plane (eq. 2.4-2.5).
+
+    The problem is solved on a sequence of grids N = 512, 1024, 2048, ... (each started from
+    the contact of the previous one).  The differences between the scalars of the last three
+    grids give an a-posteriori estimate of each scalar's discretisation error (see
+    `error_estimate` of the result).  With ``nodes=None`` (the default) the sequence stops at
+    the first grid whose estimate meets ``rtol``; with ``nodes`` it stops at that grid.
 
     Parameters
     ----------
@@ -224,18 +249,29 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         ``E_inf/E0`` of the default standard linear solid (default 3); not with ``material``.
     hk : float, optional
         Amplitude of the default sinusoid (default 1); not with ``profile``.
-    nodes : int
-        Panels per period, ``N >= 8``.
+    nodes : int, optional
+        Panels per period (a power of two is not required): a fixed mesh.  Default: adaptive.
+    rtol : float, optional
+        Adaptive mesh only: the target of the estimated errors, relative for Delta/h and mu,
+        absolute for ka and ke (the contact fraction times pi with several patches).
+        Default 1e-6.
+    max_nodes : int, optional
+        Adaptive mesh only: the largest grid (a power of two); default the cap set by memory.
+        When the target is not met there, the result is not a success and says which
+        estimate was reached.
     tol : float
         Bound on the 2-norm of the residual of each Krylov solve, relative to the
         amplitude h k (so on every gap on the contact, in units of h, and on the
         load equation); default 1e-10.
     max_outer : int
         Active-set iterations per grid.
-    nested : bool
-        Solve on grids N/level_ratio^l first (down to ``coarsest`` panels).
     restart, max_inner : int
         GMRES restart length and iteration cap per linear solve.
+    nested : bool
+        With ``nodes``: solve the coarser grids first (their contact starts the next grid, and
+        the last three give the error estimate).  False solves ``nodes`` alone, from the
+        full-contact pressure clipped at zero, with no estimate.  The adaptive mesh is always
+        nested.
 
     Returns
     -------
@@ -251,7 +287,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     Eq. (2.2)-(2.5) (operator), (3.1) (friction), Appendix B (full contact).
     """
     validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
-             profile=profile, material=material, nodes=nodes)
+             profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes)
     if profile is None:
         profile = Sinusoid(1.0 if hk is None else hk)
     elif hk is not None:
@@ -265,7 +301,6 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     if not isinstance(material, Prony):
         raise _bad("material", material, "a bem.Prony creep function")
     speed = _check_real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0)
-    nodes = _check_positive_int("nodes", nodes, 8)
     if (load is None) == (penetration is None):
         raise _bad("load", load, "exactly one of load and penetration "
                    f"(got load={load!r}, penetration={penetration!r})")
@@ -274,65 +309,224 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     if penetration is not None:
         penetration = _check_real("penetration", penetration, "Delta/h in (0, 1]",
                                   lambda v: 0.0 < v <= 1.0)
+    if nodes is not None:
+        nodes = _check_positive_int("nodes", nodes, 8)
+        for name, v in (("rtol", rtol), ("max_nodes", max_nodes)):
+            if v is not None:
+                raise _bad(name, v, f"nothing with nodes={nodes}: {name} steers the adaptive "
+                           "mesh (nodes=None)")
+    else:
+        if nested is not True:
+            raise _bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
+        rtol = DEFAULT_RTOL if rtol is None else float(rtol)
+        max_nodes = MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
     tol = _check_real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2)
     max_outer = _check_positive_int("max_outer", max_outer, 1)
-    coarsest = _check_positive_int("coarsest", coarsest, 8)
-    level_ratio = _check_positive_int("level_ratio", level_ratio, 2)
     restart = _check_positive_int("restart", restart, 1)
     max_inner = _check_positive_int("max_inner", max_inner, 1)
 
     amp = float(profile.amplitude)
     control, asked = ("load", load) if load is not None else ("penetration", penetration)
     sep = None if penetration is None else amp * (1.0 - penetration)
+    if nodes is not None:  # the fixed grid and the halvings below it down to START_NODES
+        low = max(8, min(START_NODES // 2, nodes // 4))  # at least N/4 for an estimate
+        sizes = [nodes]
+        while nested and sizes[-1] % 2 == 0 and sizes[-1] // 2 >= low:
+            sizes.append(sizes[-1] // 2)
+        sizes.reverse()
+    else:
+        sizes = []
+        n = START_NODES
+        while n <= max_nodes:
+            sizes.append(n)
+            n *= 2
+    levels = []      # one entry per grid: (nodes, nit, inner iterations, status)
+    scalars = []     # (nodes, dict of scalars) of the converged grids, coarse to fine
+    best = None      # (res, grid) of the finest converged grid
+    estimate = None
+    reason = None
+    reached = None
+    failed = 0
+    good = None      # (res, grid) of the finest converged grid
+    for n in sizes:
+        grid = _Grid(profile, material, speed, n)
+        res = _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner)
+        levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
+        last = (res, grid)
+        # an unconverged grid still gives the next one a better start than none
+        best = (res, grid)
+        if res["status"] != 0:
+            failed += 1
+            if nodes is None and scalars and failed >= 2:
+                # two finer grids in a row failed after a converged one: refining further
+                # only costs more (each failed grid runs max_outer steps)
+                reason = (f"the active set did not converge on N={levels[-2][0]} and "
+                          f"N={n} ({res['message']})")
+                break
+            continue
+        failed = 0
+        good = (res, grid)
+        scalars.append((n, _level_scalars(res, grid, profile, material, speed, amp)))
+        estimate, reason = _estimate(scalars, material, speed)
+        if nodes is None and reason is None and _met(estimate, scalars[-1][1], rtol):
+            reached = n
+            break
+    res, grid = last
+    if nodes is None and reached is None and good is not None:
+        # the finest converged grid, flagged: its estimate did not meet the target
+        res, grid = good
+        res = dict(res)
+        res["status"] = STATUS_TARGET
+        shown = "no estimate" if estimate is None else "estimated errors " + ", ".join(
+            f"{k}={v:.2e}" for k, v in estimate.items() if v is not None)
+        stop = "max_nodes" if levels[-1][0] == max_nodes else f"refinement stopped at N={levels[-1][0]}"
+        res["message"] = (f"accuracy target rtol={rtol:g} not reached (finest converged grid "
+                          f"N={grid.n}, {stop}): {reason + '; ' if reason else ''}{shown}")
+    if nodes is not None and reason is not None and estimate is not None \
+            and not _memory_only(reason):
+        estimate = None  # the grids below a fixed one do not resolve the contact: no estimate
+    return build_result(res, grid, profile, material, speed, amp, load, levels,
+                        asked=asked, control=control,
+                        error_estimate=estimate, rtol=rtol if nodes is None else None,
+                        extra_diagnostics={"estimate_note": reason} if reason else None)
 
-    fine = _Grid(profile, material, speed, nodes)
-    full_start = None
+
+def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner):
+    """Solve one grid, started from the finest converged coarser grid (or from scratch)."""
+    n = grid.n
+    full = None
     if sep == 0.0:
         # Delta = h: full contact, whose load is not unique; return the smallest
         # one (the full-contact threshold, the limit of Delta -> h from below)
-        sig = fine.op.pseudo_solve(fine.y)
-        full_start = sig - float(sig.min())
+        sig = grid.op.pseudo_solve(grid.y)
+        full = sig - float(sig.min())
     elif load is not None:
-        sig = fine.op.pseudo_solve(fine.y) + load
+        sig = grid.op.pseudo_solve(grid.y) + load
         if sig.min() >= 0.0:  # full contact: no active-set iteration needed
-            full_start = sig
-    if full_start is not None:
-        res = {"sigma": full_start, "s": float(fine.y.mean()), "active": np.ones(nodes, np.bool_),
-               "gap": fine.op.apply(full_start) - fine.y + float(fine.y.mean()), "nit": 1,
-               "inner": [0], "relres": 0.0, "status": 0, "message": "converged"}
-        return build_result(res, fine, profile, material, speed, amp, load,
-                            [(nodes, 1, (0,))], asked=asked, control=control)
-
-    sizes = [nodes]
-    while nested and sizes[-1] // level_ratio >= coarsest:
-        sizes.append(sizes[-1] // level_ratio)
-    sizes.reverse()
-
-    history = []
-    prev = prev_grid = None
-    for level, n in enumerate(sizes):
-        final = level == len(sizes) - 1
-        grid = fine if final else _Grid(profile, material, speed, n)
-        # coarse grids only supply a starting active set: 1e-8 is plenty there
-        level_tol = tol if final else max(tol, 1e-8)
-        if prev is None:
-            if load is not None:
-                sig = grid.op.pseudo_solve(grid.y) + load
-                active = sig > 0.0
-                sigma0 = np.where(active, sig, 0.0)
-            else:
-                active = grid.y > sep  # the rigid overlap
-                sigma0 = np.zeros(n)
-            s0 = 0.0 if sep is None else sep
+            full = sig
+    if full is not None:
+        s = float(grid.y.mean())
+        return {"sigma": full, "s": s, "active": np.ones(n, np.bool_),
+                "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
+                "relres": 0.0, "status": 0, "message": "converged"}
+    if best is None:
+        if load is not None:
+            sig = grid.op.pseudo_solve(grid.y) + load
+            active = sig > 0.0
+            sigma0 = np.where(active, sig, 0.0)
         else:
-            # an unconverged coarse grid only gives a worse start
-            active, sigma0, s0 = _prolong(prev, prev_grid, grid)
-            if sep is not None:
-                s0 = sep
-        res = _solve_grid(grid, load, sep, active, sigma0, s0, level_tol, max_outer,
-                          restart, max_inner)
-        history.append((n, res["nit"], tuple(res["inner"])))
-        prev, prev_grid = res, grid
+            active = grid.y > sep  # the rigid overlap
+            sigma0 = np.zeros(n)
+        s0 = 0.0 if sep is None else sep
+    else:
+        active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        if sep is not None:
+            s0 = sep
+    return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart, max_inner)
 
-    return build_result(prev, prev_grid, profile, material, speed, amp, load, history,
-                        asked=asked, control=control)
+
+def _level_scalars(res, grid, profile, material, speed, amp):
+    """The scalars of one converged grid (for the estimate): plain floats, None where null."""
+    sigma = res["sigma"]
+    active = res["active"]
+    tau_f, _ = _friction(sigma, grid.y, material, speed)
+    mean_p = float(sigma.mean())
+    out = {"penetration": (amp - float(res["s"])) / amp, "tau_f": tau_f,
+           "mu": tau_f / mean_p if mean_p > 0 else math.nan}
+    if active.all():
+        p = _full_patch(sigma, grid.y, profile, mean_p)
+        out.update(contact_fraction=1.0, ka=math.pi, ke=None, ke_hat=p.ke_hat, npatch=1,
+                   min_panels=grid.n)
+        return out
+    patches = _patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y)
+    frac = float(sum(p.width for p in patches))
+    out.update(contact_fraction=frac, npatch=len(patches),
+               min_panels=min(p.panels for p in patches))
+    if len(patches) == 1:
+        p = patches[0]
+        out.update(ka=p.ka, ke=p.ke, ke_hat=p.ke_hat)
+    else:
+        out.update(ka=None, ke=None, ke_hat=None)
+    return out
+
+
+def _unresolved_memory(material, speed, nodes):
+    """Bound on the edge shift of the Prony terms whose memory length w tau_i/(2 pi) spans
+    fewer than MIN_MEMORY_PANELS panels of `nodes`: 0.5 (J_i/J0) w tau_i each (for the standard
+    linear solid (1 - 1/rho) w/2, the first-order retreat of the trailing edge at low speed)."""
+    bound = 0.0
+    for j, t in material.terms:
+        if j > 0.0 and speed * t * nodes / (2.0 * math.pi) < MIN_MEMORY_PANELS:
+            bound += 0.5 * (j / material.J0) * speed * t
+    return bound
+
+
+def _estimate(scalars, material, speed):
+    """A-posteriori error estimate from the last three converged grids N/4, N/2, N.
+
+    Each scalar q is assumed to converge at least at first order in 1/N, so the error of
+    q_N is bounded by the next difference, itself at most |q_N - q_N/2| and, against an
+    accidentally small last difference (the edges' position in their panels makes the
+    errors oscillate), at most |q_N/2 - q_N/4|/2; the estimate is ESTIMATE_SAFETY times the
+    larger (relative to |q_N| for Delta/h, tau_f and mu).  Returns (estimate, reason), with
+    reason None when the three grids resolve the contact, else why the estimate is not
+    trusted yet (the estimate is then None or includes the unresolved memory bound).
+    """
+    if len(scalars) < 3:
+        return None, "fewer than three converged grids"
+    (n0, a), (n1, b), (n2, c) = scalars[-3:]
+    if not (n1 == 2 * n0 and n2 == 2 * n1):
+        return None, "no three consecutive converged grids"
+    if not a["npatch"] == b["npatch"] == c["npatch"]:
+        return None, f"the number of contact patches changes with N ({a['npatch']}, " \
+                     f"{b['npatch']}, {c['npatch']})"
+    est = {}
+    for k in ESTIMATE_KEYS:
+        vals = (a[k], b[k], c[k])
+        if any(v is None for v in vals):
+            est[k] = None
+            continue
+        d1 = abs(vals[2] - vals[1])
+        d2 = abs(vals[1] - vals[0])
+        e = ESTIMATE_SAFETY * max(d1, 0.5 * d2)
+        if k in RELATIVE_KEYS:
+            scale = abs(vals[2])
+            e = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
+        est[k] = e
+    reason = None
+    if a["min_panels"] < MIN_PATCH_PANELS:
+        reason = f"a contact patch spans {a['min_panels']} panels at N={n0} " \
+                 f"(at least {MIN_PATCH_PANELS} are needed)"
+    shift = _unresolved_memory(material, speed, n0)
+    if shift > 0.0:
+        for k in est:
+            if est[k] is not None:
+                est[k] += ESTIMATE_SAFETY * shift
+        if reason is None and shift > 0.0:
+            reason = (f"a memory length w tau_i/(2 pi) spans fewer than {MIN_MEMORY_PANELS:g} "
+                      f"panels at N={n0} (edge shift up to {shift:.1e} unresolved)")
+    return est, reason
+
+
+def _memory_only(reason):
+    """Whether the estimate's only caveat is an unresolved memory length (whose bound the
+    estimate then includes)."""
+    return reason.startswith("a memory length")
+
+
+def _met(estimate, values, rtol):
+    """Whether the estimate meets rtol on mu, Delta/h (relative) and ka, ke (absolute; the
+    contact fraction times pi where several patches leave ka and ke undefined)."""
+    keys = ["mu", "penetration"]
+    keys += ["ka", "ke"] if values["npatch"] == 1 else ["contact_fraction"]
+    for k in keys:
+        e = estimate.get(k)
+        if e is None:
+            if k == "ke" and values["ke"] is None:  # full contact: no ke
+                continue
+            return False
+        if k == "contact_fraction":
+            e = math.pi * e
+        if not e <= rtol:
+            return False
+    return True

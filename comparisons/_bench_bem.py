@@ -1,4 +1,4 @@
-"""Benchmark tables of the BEM road (issue 3): accuracy, iterations, time, memory.
+"""Benchmark tables of the BEM road: accuracy, iterations, time, memory.
 
 Run as ``python -m comparisons bench-bem`` or
 ``python -c "from comparisons._bench_bem import main; main()"``.  Tables go to
@@ -184,7 +184,7 @@ def main(argv=None) -> int:
         return 2
     exps = range(args.min_exponent, args.max_exponent + 1)
     out = sys.stdout
-    print("# BEM benchmark (issue 3)", file=out)
+    print("# BEM benchmark", file=out)
     if "limits" in tables:
         table_elastic_limits(exps, args.load, out)
     if "full" in tables:

@@ -126,12 +126,18 @@ def main(args):
     """`python -m comparisons bench`: the defaults of its options are applied here."""
     if getattr(args, "cluster", False):
         return cluster_sweep(2000 if args.points is None else args.points)
+    if getattr(args, "honesty", False):
+        from . import _bench_trust
+        seed = 20261123 if getattr(args, "seed", None) is None else args.seed
+        return _bench_trust.honesty(300 if args.points is None else args.points, seed)
     points = 1000 if args.points is None else args.points
     max_log2n = 20 if args.max_log2n is None else args.max_log2n
     rc = 0
     if not getattr(args, "bem_only", False):
         rc |= analytic_sweep(points)
     if getattr(args, "bem", False) or getattr(args, "bem_only", False):
-        from . import _bench_bem
+        from . import _bench_bem, _bench_trust
         rc |= _bench_bem.main(["--big-exponent", str(max_log2n)])
+        rc |= _bench_trust.cost()
+        rc |= _bench_trust.memory(min(max_log2n, 20))
     return rc

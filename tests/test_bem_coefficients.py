@@ -12,7 +12,7 @@ from _bem_references import aliased_symbol, brute_symbol, fourier_coefficients
 # Tolerances (what each one measures):
 #: closed-form aliased sums vs brute-force summation (round-off of both)
 TOL_REFERENCE = 1e-13
-#: real-space coefficients vs Fourier series, relative to max|C| (the issue's target)
+#: real-space coefficients vs Fourier series, relative to max|C| (the accuracy asked of them)
 TOL_COEFF = 1e-12
 #: FFT convolution vs dense circulant sum, relative to the result's scale (round-off)
 TOL_FFT = 1e-13

@@ -40,7 +40,9 @@ def test_record_has_the_analytic_keys_and_round_trips():
     assert rec["patches"][0]["summit"] == 0.0
     d = rec["diagnostics"]
     assert {"nit", "inner_iterations", "residuals", "levels", "memory_layer_panels"} <= set(d)
-    assert rec["error_estimate"] is None and isinstance(rec["warnings"], list)
+    assert set(rec["error_estimate"]) == {"contact_fraction", "ka", "ke", "ke_hat",
+                                          "penetration", "tau_f", "mu"}
+    assert all(v > 0 for v in rec["error_estimate"].values()) and isinstance(rec["warnings"], list)
     # the two roads agree on what the keys mean (a coarse mesh: a loose bound)
     assert abs(r.ka - a.ka) < 2e-2 and abs(r.ke - a.ke) < 2e-2 and abs(r.mu / a.mu - 1) < 2e-2
 
@@ -156,7 +158,7 @@ def test_validate_and_accepted():
     bem.validate(ratio=1 + 2 * RATIO_EPS)
 
 
-@pytest.mark.parametrize("kw", [dict(load=1e-8), dict(penetration=PENETRATION_MIN),
+@pytest.mark.parametrize("kw", [dict(penetration=PENETRATION_MIN),
                                 dict(load=0.3, speed=SPEED_MIN), dict(load=0.3, speed=SPEED_MAX),
                                 dict(load=0.3, ratio=RATIO_MAX, speed=1e-3),
                                 dict(load=HK_MIN * 0.3, hk=HK_MIN), dict(load=HK_MAX * 0.3, hk=HK_MAX),
@@ -310,6 +312,8 @@ def test_accepted_inputs_give_an_answer_or_a_clean_failure(over, pen, by_load, s
     if not r.success:
         assert r.message and rec["success"] is False
         return
-    assert 0.0 < r.penetration <= 1.0 and 0.0 < r.ka <= math.pi and r.mu >= 0.0
+    several = r.n_patches > 1  # then ka is None (no single patch describes the contact)
+    assert 0.0 < r.penetration <= 1.0 and r.mu >= 0.0
+    assert (r.ka is None) if several else 0.0 < r.ka <= math.pi
     assert 0.0 < r.contact_fraction <= 1.0 and np.all(r.pressure >= 0) and np.all(r.gap >= 0)
     assert abs(r.load / control["load"] - 1) <= 1e-8 if by_load else r.penetration == pytest.approx(pen, rel=1e-6)

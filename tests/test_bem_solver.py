@@ -13,7 +13,7 @@ TWO_TERM = bem.Prony(1.0, (0.5, 0.3), (1.0, 0.01))
 
 # Tolerances (what each one measures):
 #: mu in full contact vs Appendix B at N = 1024: the element's aliasing error,
-#: measured <= 6.7e-9 (it falls like N^-3); the issue's target
+#: measured <= 6.7e-9 (it falls like N^-3)
 TOL_FULL_MU = 1e-8
 #: full-contact pressure field and k e_hat at N = 1024: the element's phase error
 #: ~ 2 Im J*(N)/N^2 (aliased modes N +- 1), largest at slow speed (measured 2.7e-7
@@ -250,7 +250,11 @@ def test_nested_and_single_grid_agree():
     a = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=2.0, nodes=4096, load=0.5)
     b = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=2.0, nodes=4096, load=0.5, nested=False)
     assert len(a.levels) > 1 and len(b.levels) == 1 and b.nit > a.nit
-    assert np.max(np.abs(a.pressure - b.pressure)) < TOL_SAME
+    # the Krylov tolerance (1e-10 h) bounds the gaps, so the displacements agree to it; the
+    # pressure is C^-1 of the gaps, whose symbol grows like |n|/(2 J*(n)) up to n = N/2, so two
+    # converged solves from different starts agree to about N/2 × 1e-10 / J(0+) (measured 2.4e-8)
+    assert np.max(np.abs(a.displacement - b.displacement)) < TOL_SAME
+    assert np.max(np.abs(a.pressure - b.pressure)) < 4096 / 2 * 1e-10 * 3.0
     assert abs(a.ka - b.ka) < TOL_SAME
 
 
