@@ -205,6 +205,13 @@ def _check_real(name, value, allowed, test):
 
 #: first grid of the refinement sequence (coarser grids only ever gave a start)
 START_NODES = 512
+#: the default cap of the adaptive mesh: 2^22 (about 1 GB, a few seconds per grid), or less
+#: where memory is smaller; max_nodes may raise it up to bem.MAX_NODES
+ADAPTIVE_MAX_NODES = min(MAX_NODES, 2 ** 22)
+#: active-set steps on a grid started from a converged coarser one (it usually needs 1 to 5)
+MAX_OUTER_AFTER_CONVERGED = 15
+#: consecutive failed grids, none converged yet, after which the adaptive mesh gives up
+MAX_FAILED_FROM_SCRATCH = 5
 #: the default accuracy target of the adaptive mesh
 DEFAULT_RTOL = 1e-6
 #: the error estimate is this factor times the first-order bound of the last differences
@@ -220,7 +227,7 @@ ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f
 
 def solve(*, load=None, penetration=None, speed, profile=None, material=None, ratio=None,
           hk=None, nodes=None, rtol=None, max_nodes=None, tol=1e-10, max_outer=50,
-          restart=16, max_inner=600, nested=True) -> BemResult:
+          restart=16, max_inner=300, nested=True) -> BemResult:
     """Steady sliding of a rigid periodic indenter on a viscoelastic half-plane (eq. 2.4-2.5).
 
     The problem is solved on a sequence of grids N = 512, 1024, 2048, ... (each started from
@@ -256,7 +263,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         absolute for ka and ke (the contact fraction times pi with several patches).
         Default 1e-6.
     max_nodes : int, optional
-        Adaptive mesh only: the largest grid (a power of two); default the cap set by memory.
+        Adaptive mesh only: the largest grid (a power of two, up to ``bem.MAX_NODES``);
+        default ``2^22`` (or the memory cap where it is lower).
         When the target is not met there, the result is not a success and says which
         estimate was reached.
     tol : float
@@ -319,7 +327,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         if nested is not True:
             raise _bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
         rtol = DEFAULT_RTOL if rtol is None else float(rtol)
-        max_nodes = MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
+        max_nodes = ADAPTIVE_MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
     tol = _check_real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2)
     max_outer = _check_positive_int("max_outer", max_outer, 1)
     restart = _check_positive_int("restart", restart, 1)
@@ -350,18 +358,20 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     good = None      # (res, grid) of the finest converged grid
     for n in sizes:
         grid = _Grid(profile, material, speed, n)
-        res = _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner)
+        steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
+        res = _solve_one(grid, load, sep, best, tol, steps, restart, max_inner)
         levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
         last = (res, grid)
         # an unconverged grid still gives the next one a better start than none
         best = (res, grid)
         if res["status"] != 0:
             failed += 1
-            if nodes is None and scalars and failed >= 2:
-                # two finer grids in a row failed after a converged one: refining further
-                # only costs more (each failed grid runs max_outer steps)
-                reason = (f"the active set did not converge on N={levels[-2][0]} and "
-                          f"N={n} ({res['message']})")
+            if nodes is None and failed >= (2 if scalars else MAX_FAILED_FROM_SCRATCH):
+                # two finer grids in a row failed after a converged one (or the first few
+                # grids all failed): refining further only costs more, each failed grid
+                # running all its active-set steps
+                reason = (f"the solve did not converge on N={levels[-failed][0]} … N={n} "
+                          f"({res['message']})")
                 break
             continue
         failed = 0
