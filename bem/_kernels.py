@@ -229,19 +229,21 @@ def exponential_recursion(source: np.ndarray, a: float, out: np.ndarray) -> None
 # --------------------------------------------------------------------------
 @njit(cache=True)
 def update_active_set(active: np.ndarray, pressure: np.ndarray,
-                      gap: np.ndarray, out: np.ndarray) -> int:
+                      gap: np.ndarray, out: np.ndarray, eps_p: float = 0.0,
+                      eps_g: float = 0.0) -> int:
     """Primal-dual active-set rule; returns how many entries changed.
 
     On the active set the gap is zero and a panel leaves when its pressure is
-    not positive; off it the pressure is zero and a panel enters when its gap
-    is negative (interpenetration).
+    below -eps_p; off it the pressure is zero and a panel enters when its gap
+    is below -eps_g (interpenetration).  The small allowances stop panels whose
+    pressure and gap are both zero to round-off from flipping back and forth.
     """
     changed = 0
     for i in range(active.shape[0]):
         if active[i]:
-            out[i] = pressure[i] > 0.0
+            out[i] = pressure[i] >= -eps_p
         else:
-            out[i] = gap[i] < 0.0
+            out[i] = gap[i] < -eps_g
         if out[i] != active[i]:
             changed += 1
     return changed

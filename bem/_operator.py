@@ -35,8 +35,7 @@ class CirculantOperator:
 
     def __init__(self, column: np.ndarray):
         self.n = int(column.size)
-        self.column = np.asarray(column, dtype=float)
-        sym = sfft.rfft(self.column)
+        sym = sfft.rfft(np.asarray(column, dtype=float))  # the column itself is not kept
         sym[0] = 0.0
         self.symbol = sym
         inv = np.zeros_like(sym)

@@ -51,7 +51,6 @@ class _Grid:
             influence_coefficients_nd(material.j_plus, material.terms, speed, nodes))
         y = profile.sample(nodes)
         self.y = y - y.mean()  # rounding only: samples have zero mean
-        self.slope = profile.slope(nodes)
         self.amp = float(profile.amplitude)
 
 
@@ -150,7 +149,10 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             status = 2
             message = f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
             break
-        changed = _kernels.update_active_set(active, sigma, gap, new)
+        # allowances well inside the validity gate's round-off (1e-12 of max σ, 1e-12 h)
+        changed = _kernels.update_active_set(active, sigma, gap, new,
+                                             ACTIVE_SET_ROUNDOFF * float(np.max(sigma)),
+                                             ACTIVE_SET_ROUNDOFF * grid.amp)
         if changed == 0:
             status, message = 0, "converged"
             break
@@ -205,13 +207,17 @@ def _check_real(name, value, allowed, test):
 
 #: first grid of the refinement sequence (coarser grids only ever gave a start)
 START_NODES = 512
-#: the default cap of the adaptive mesh: 2^22 (about 1 GB, a few seconds per grid), or less
+#: the default cap of the adaptive mesh: 2^23 (about 2 GB, 10-20 s for that grid), or less
 #: where memory is smaller; max_nodes may raise it up to bem.MAX_NODES
-ADAPTIVE_MAX_NODES = min(MAX_NODES, 2 ** 22)
+ADAPTIVE_MAX_NODES = min(MAX_NODES, 2 ** 23)
 #: active-set steps on a grid started from a converged coarser one (it usually needs 1 to 5)
 MAX_OUTER_AFTER_CONVERGED = 15
+#: the largest grid on which a failed solve is retried from the elastic contact
+MAX_NODES_RETRY = 2 ** 21
 #: consecutive failed grids, none converged yet, after which the adaptive mesh gives up
 MAX_FAILED_FROM_SCRATCH = 5
+#: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
+ACTIVE_SET_ROUNDOFF = 2e-13
 #: the default accuracy target of the adaptive mesh
 DEFAULT_RTOL = 1e-6
 #: the error estimate is this factor times the first-order bound of the last differences
@@ -264,7 +270,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         Default 1e-6.
     max_nodes : int, optional
         Adaptive mesh only: the largest grid (a power of two, up to ``bem.MAX_NODES``);
-        default ``2^22`` (or the memory cap where it is lower).
+        default ``2^23`` (or the memory cap where it is lower).
         When the target is not met there, the result is not a success and says which
         estimate was reached.
     tol : float
@@ -359,7 +365,16 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     for n in sizes:
         grid = _Grid(profile, material, speed, n)
         steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
-        res = _solve_one(grid, load, sep, best, tol, steps, restart, max_inner)
+        elastic = (profile, Prony(material.J0))
+        res = _solve_one(grid, load, sep, best, tol, steps, restart, max_inner, elastic=elastic)
+        if res["status"] != 0 and best is not None and n <= MAX_NODES_RETRY:
+            # the coarser contact can be a poor start where the finer grid first resolves a
+            # memory length; try once more from the elastic contact on this grid (not on the
+            # largest grids, where a failing retry costs minutes)
+            retry = _solve_one(grid, load, sep, None, tol, steps, restart, max_inner,
+                               elastic=elastic)
+            if retry["status"] == 0 or good is None:
+                res = retry
         levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
         last = (res, grid)
         # an unconverged grid still gives the next one a better start than none
@@ -401,8 +416,9 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
                         extra_diagnostics={"estimate_note": reason} if reason else None)
 
 
-def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner):
-    """Solve one grid, started from the finest converged coarser grid (or from scratch)."""
+def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner, elastic=None):
+    """Solve one grid, started from the finest coarser grid, or else from the elastic contact
+    of ``elastic = (profile, relaxed elastic Prony)`` on the same grid, or else from scratch."""
     n = grid.n
     full = None
     if sep == 0.0:
@@ -419,6 +435,14 @@ def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner):
         return {"sigma": full, "s": s, "active": np.ones(n, np.bool_),
                 "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
                 "relres": 0.0, "status": 0, "message": "converged"}
+    if best is None and elastic is not None:
+        # no coarser grid: start from the relaxed elastic contact on this grid (a symmetric
+        # positive-definite problem, on which the active-set method converges from anywhere);
+        # the viscoelastic contact lies between it and the glassy one
+        eg = _Grid(elastic[0], elastic[1], 0.0, n)
+        er = _solve_one(eg, load, sep, None, tol, max_outer, restart, max_inner)
+        if er["status"] == 0:
+            best = (er, eg)
     if best is None:
         if load is not None:
             sig = grid.op.pseudo_solve(grid.y) + load
