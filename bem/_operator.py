@@ -44,11 +44,15 @@ class CirculantOperator:
 
     def apply(self, sigma: np.ndarray) -> np.ndarray:
         """k v = C sigma (mean of the result exactly 0)."""
-        return sfft.irfft(self.symbol * sfft.rfft(sigma), self.n)
+        f = sfft.rfft(sigma)
+        f *= self.symbol  # in place: one spectrum alive at a time (memory at large N)
+        return sfft.irfft(f, self.n, overwrite_x=True)
 
     def pseudo_solve(self, v: np.ndarray) -> np.ndarray:
         """sigma with C sigma = v - mean(v) and mean(sigma) = 0."""
-        return sfft.irfft(self.inverse_symbol * sfft.rfft(v), self.n)
+        f = sfft.rfft(v)
+        f *= self.inverse_symbol
+        return sfft.irfft(f, self.n, overwrite_x=True)
 
 
 def gmres(matvec, precond, b, x0, atol, restart, maxiter):

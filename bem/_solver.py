@@ -120,7 +120,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     inner = []
     status, message = 1, "outer iterations exhausted"
     relres = 0.0
-    sigma = sigma0.copy()
+    sigma = sigma0  # the caller's start, not used after
     s = s0
     gap = np.zeros(n)
     new = np.empty(n, dtype=np.bool_)
@@ -233,7 +233,7 @@ ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f
 
 def solve(*, load=None, penetration=None, speed, profile=None, material=None, ratio=None,
           hk=None, nodes=None, rtol=None, max_nodes=None, tol=1e-10, max_outer=50,
-          restart=16, max_inner=300, nested=True) -> BemResult:
+          restart=8, max_inner=300, nested=True) -> BemResult:
     """Steady sliding of a rigid periodic indenter on a viscoelastic half-plane (eq. 2.4-2.5).
 
     The problem is solved on a sequence of grids N = 512, 1024, 2048, ... (each started from
@@ -366,12 +366,17 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         grid = _Grid(profile, material, speed, n)
         steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
         elastic = (profile, Prony(material.J0))
-        res = _solve_one(grid, load, sep, best, tol, steps, restart, max_inner, elastic=elastic)
-        if res["status"] != 0 and best is not None and n <= MAX_NODES_RETRY:
+        # the coarser grid is handed over in a list that _solve_one empties, so that it is
+        # freed once it has given its start (memory at large N)
+        start, best, last, res = [best], None, None, None
+        if nodes is not None:
+            good = None  # a fixed mesh answers on its own grid or not at all
+        res = _solve_one(grid, load, sep, start, tol, steps, restart, max_inner, elastic=elastic)
+        if res["status"] != 0 and levels[:-1] and n <= MAX_NODES_RETRY:
             # the coarser contact can be a poor start where the finer grid first resolves a
             # memory length; try once more from the elastic contact on this grid (not on the
             # largest grids, where a failing retry costs minutes)
-            retry = _solve_one(grid, load, sep, None, tol, steps, restart, max_inner,
+            retry = _solve_one(grid, load, sep, [None], tol, steps, restart, max_inner,
                                elastic=elastic)
             if retry["status"] == 0 or good is None:
                 res = retry
@@ -416,9 +421,11 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
                         extra_diagnostics={"estimate_note": reason} if reason else None)
 
 
-def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner, elastic=None):
-    """Solve one grid, started from the finest coarser grid, or else from the elastic contact
-    of ``elastic = (profile, relaxed elastic Prony)`` on the same grid, or else from scratch."""
+def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None):
+    """Solve one grid, started from the finest coarser grid (``start``: a list holding it or
+    None, emptied here), or else from the elastic contact of ``elastic = (profile, relaxed
+    elastic Prony)`` on the same grid, or else from scratch."""
+    best = start.pop() if start else None
     n = grid.n
     full = None
     if sep == 0.0:
@@ -440,7 +447,7 @@ def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner, elasti
         # positive-definite problem, on which the active-set method converges from anywhere);
         # the viscoelastic contact lies between it and the glassy one
         eg = _Grid(elastic[0], elastic[1], 0.0, n)
-        er = _solve_one(eg, load, sep, None, tol, max_outer, restart, max_inner)
+        er = _solve_one(eg, load, sep, [None], tol, max_outer, restart, max_inner)
         if er["status"] == 0:
             best = (er, eg)
     if best is None:
@@ -454,6 +461,7 @@ def _solve_one(grid, load, sep, best, tol, max_outer, restart, max_inner, elasti
         s0 = 0.0 if sep is None else sep
     else:
         active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        best = None
         if sep is not None:
             s0 = sep
     return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart, max_inner)

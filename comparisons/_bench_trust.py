@@ -229,7 +229,8 @@ def memory(exponent=20, out=sys.stdout):
     print("| --- | --- | --- |", file=out)
     worst = 0.0
     for label, kw in (("partial, p̃ = 0.3, V/V0 = 1", dict(load=0.3, speed=1.0)),
-                      ("near full, p̃ = 0.9, V/V0 = 1", dict(load=0.9, speed=1.0)),
+                      ("1.6 % below the transition, p̃ = 0.66, V/V0 = 1",
+                       dict(load=0.66, speed=1.0)),
                       ("full, p̃ = 2, V/V0 = 1", dict(load=2.0, speed=1.0))):
         _progress(f"memory: {label}")
         tracemalloc.start()

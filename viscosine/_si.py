@@ -73,8 +73,8 @@ class SIResult:
     """One operating point in SI units (lengths m, stresses Pa, speeds m/s).
 
     ``solution`` is the dimensionless result behind it (either road's result object);
-    ``error_estimate`` is its estimate (dimensionless: absolute for ka, ke, kê, relative
-    otherwise), or None.
+    ``error_estimate`` is its estimate (dimensionless: absolute for the contact fraction, ka,
+    ke, kê; relative for Δ/h, τf, μ), or None.
     """
 
     success: bool
