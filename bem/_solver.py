@@ -214,6 +214,9 @@ ADAPTIVE_MAX_NODES = min(MAX_NODES, 2 ** 23)
 MAX_OUTER_AFTER_CONVERGED = 15
 #: the largest grid on which a failed solve is retried from the elastic contact
 MAX_NODES_RETRY = 2 ** 21
+#: up to this grid the retry gets all max_outer active-set steps (from the elastic contact
+#: it may need 15-20), above it MAX_OUTER_AFTER_CONVERGED
+MAX_NODES_FULL_RETRY = 2 ** 18
 #: consecutive failed grids, none converged yet, after which the adaptive mesh gives up
 MAX_FAILED_FROM_SCRATCH = 5
 #: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
@@ -376,8 +379,9 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
             # the coarser contact can be a poor start where the finer grid first resolves a
             # memory length; try once more from the elastic contact on this grid (not on the
             # largest grids, where a failing retry costs minutes)
-            retry = _solve_one(grid, load, sep, [None], tol, steps, restart, max_inner,
-                               elastic=elastic)
+            retry = _solve_one(grid, load, sep, [None], tol,
+                               max_outer if n <= MAX_NODES_FULL_RETRY else steps, restart,
+                               max_inner, elastic=elastic)
             if retry["status"] == 0 or good is None:
                 res = retry
         levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
@@ -447,7 +451,7 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
         # positive-definite problem, on which the active-set method converges from anywhere);
         # the viscoelastic contact lies between it and the glassy one
         eg = _Grid(elastic[0], elastic[1], 0.0, n)
-        er = _solve_one(eg, load, sep, [None], tol, max_outer, restart, max_inner)
+        er = _solve_one(eg, load, sep, [None], tol, max(max_outer, 50), restart, max_inner)
         if er["status"] == 0:
             best = (er, eg)
     if best is None:
@@ -504,38 +508,47 @@ def _unresolved_memory(material, speed, nodes):
 
 
 def _estimate(scalars, material, speed):
-    """A-posteriori error estimate from the last three converged grids N/4, N/2, N.
+    """A-posteriori error estimate from the last converged grids N/8 (when there), N/4, N/2, N.
 
-    Each scalar q is assumed to converge at least at first order in 1/N, so the error of
-    q_N is bounded by the next difference, itself at most |q_N - q_N/2| and, against an
-    accidentally small last difference (the edges' position in their panels makes the
-    errors oscillate), at most |q_N/2 - q_N/4|/2; the estimate is ESTIMATE_SAFETY times the
-    larger (relative to |q_N| for Delta/h, tau_f and mu).  Returns (estimate, reason), with
-    reason None when the three grids resolve the contact, else why the estimate is not
-    trusted yet (the estimate is then None or includes the unresolved memory bound).
+    Each scalar q is assumed to converge at least at first order in 1/N, so the error of q_N is
+    bounded by |q_N - q_N/2| and, against accidentally small differences (the edges' position in
+    their panels makes the errors oscillate: two grids can agree by chance), by
+    |q_N - q_N/2^j|/2^(j-1) and |q_N/2^(j-1) - q_N/2^j|/2^(j-1) for j = 2, 3; the estimate is
+    ESTIMATE_SAFETY times the largest (relative to |q_N| for Delta/h, tau_f and mu).  Returns
+    (estimate, reason), with reason None when the grids resolve the contact, else why the
+    estimate is not trusted yet (the estimate is then None or includes the unresolved memory
+    bound).
     """
     if len(scalars) < 3:
         return None, "fewer than three converged grids"
-    (n0, a), (n1, b), (n2, c) = scalars[-3:]
-    if not (n1 == 2 * n0 and n2 == 2 * n1):
+    run = [scalars[-1]]
+    for n, sc in reversed(scalars[:-1]):
+        if len(run) == 4 or n * 2 != run[-1][0]:
+            break
+        run.append((n, sc))
+    if len(run) < 3:
         return None, "no three consecutive converged grids"
-    if not a["npatch"] == b["npatch"] == c["npatch"]:
-        return None, f"the number of contact patches changes with N ({a['npatch']}, " \
-                     f"{b['npatch']}, {c['npatch']})"
+    counts = {sc["npatch"] for _, sc in run}
+    if len(counts) > 1:
+        return None, ("the number of contact patches changes with N (" +
+                      ", ".join(str(sc["npatch"]) for _, sc in reversed(run)) + ")")
     est = {}
     for k in ESTIMATE_KEYS:
-        vals = (a[k], b[k], c[k])
+        vals = [sc[k] for _, sc in run]  # fine to coarse
         if any(v is None for v in vals):
             est[k] = None
             continue
-        d1 = abs(vals[2] - vals[1])
-        d2 = abs(vals[1] - vals[0])
-        e = ESTIMATE_SAFETY * max(d1, 0.5 * d2)
+        cands = [abs(vals[0] - vals[1])]
+        for j in range(2, len(vals)):
+            w = 0.5 ** (j - 1)
+            cands += [w * abs(vals[0] - vals[j]), w * abs(vals[j - 1] - vals[j])]
+        e = ESTIMATE_SAFETY * max(cands)
         if k in RELATIVE_KEYS:
-            scale = abs(vals[2])
+            scale = abs(vals[0])
             e = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
         est[k] = e
     reason = None
+    n0, a = run[min(2, len(run) - 1)]  # N/4: the coarsest grid every estimate uses
     if a["min_panels"] < MIN_PATCH_PANELS:
         reason = f"a contact patch spans {a['min_panels']} panels at N={n0} " \
                  f"(at least {MIN_PATCH_PANELS} are needed)"
@@ -544,7 +557,7 @@ def _estimate(scalars, material, speed):
         for k in est:
             if est[k] is not None:
                 est[k] += ESTIMATE_SAFETY * shift
-        if reason is None and shift > 0.0:
+        if reason is None:
             reason = (f"a memory length w tau_i/(2 pi) spans fewer than {MIN_MEMORY_PANELS:g} "
                       f"panels at N={n0} (edge shift up to {shift:.1e} unresolved)")
     return est, reason
