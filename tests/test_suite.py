@@ -17,7 +17,6 @@ import bem
 from comparisons import cli, suite
 
 SUBSET = ["sls-penetration-v3", "sls-above-fc-v1", "prony2-full", "harmonics2-sls"]
-SLS_AWAITING_BEM = {"sls-ratio1000"}  # the BEM fails at E∞/E0 = 1000 in partial contact
 
 
 @pytest.fixture(scope="module")
@@ -88,16 +87,12 @@ def test_the_suite_covers_what_it_claims(data):
 
 
 def test_certified_digits_meet_the_targets(data):
-    """≥ 6 digits in μ and Δ/h (the load under penetration control) for every SLS case, ≥ 5 for the
-    Prony and profile cases; the ratio-1000 partial-contact case waits for the BEM."""
+    """≥ 6 digits in μ and Δ/h (the load under penetration control) for every SLS case, ratio 1000
+    included, ≥ 5 for the Prony and profile cases."""
     for case in data["cases"]:
         sc = case["certified"]["scalars"]
         target = 6 if _kind(case) == "sls" else 5
         second = "penetration" if "penetration" in sc else ("load" if "load" in sc else None)
-        if case["name"] in SLS_AWAITING_BEM:
-            assert case["certified"]["status"] == "incomplete"
-            assert "solver failures" in case["certified"]["notes"][0]
-            continue
         assert case["certified"]["status"] == "complete", case["name"]
         assert sc["mu"]["digits"] >= target, case["name"]
         if second:
