@@ -112,6 +112,51 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
     return sigma, s, its, relres, ok
 
 
+def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
+    """Load control with most panels in contact: the displacements u_F of the free panels.
+
+    With u = y on the contact and u_F on the free set, sigma = C^+ u + load (C^+ maps onto
+    zero-mean pressures, so the mean is the load) and the free panels carry no pressure:
+    (C^+ u)_F = -load, a system of the size of the free set, preconditioned by R_F C R_F^T.
+    The displacement is u less its mean, so the mean separation is s = mean(u) (the gap is then
+    zero on the contact exactly).  The Krylov tolerance bounds the pressure left on the free
+    panels, relative to the load (not below the rounding C^+ amplifies); it is set to zero there
+    afterwards.
+    Returns (sigma_full, s, iterations, residual over h k (scaled like the primal), ok).
+    """
+    op = grid.op
+    n = grid.n
+    m = free.size
+    base = grid.y.copy()
+    base[free] = 0.0
+    g = op.pseudo_solve(base)[free]
+    del base
+
+    def matvec(z):
+        e = np.zeros(n)
+        e[free] = z
+        return op.pseudo_solve(e)[free]
+
+    def precond(r):
+        e = np.zeros(n)
+        e[free] = r
+        return op.apply(e)[free]
+
+    b = -load - g
+    # C^+ amplifies the rounding of u by up to max|1/symbol|: below that the residual cannot go
+    floor = 16.0 * np.finfo(float).eps * float(np.max(np.abs(op.inverse_symbol))) * grid.amp
+    atol = max(tol * load, floor) * math.sqrt(m)
+    z, its, res, ok = gmres(matvec, precond, b, x0, atol, restart, max_inner)
+    u = grid.y.copy()
+    u[free] = z
+    del z
+    sigma = op.pseudo_solve(u)
+    sigma += load
+    sigma[free] = 0.0
+    s = float(u.mean())
+    return sigma, s, its, res / load * grid.amp, ok
+
+
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
                 max_inner):
     """Primal-dual active-set iteration on one grid."""
@@ -136,6 +181,14 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             inner.append(0)
             relres = 0.0
             ok = True
+        elif load is not None and 2 * int(np.count_nonzero(active)) > n:
+            # most panels in contact: solve for the displacements of the few free panels
+            # instead (memory and work scale with the free set, not the contact)
+            free = np.flatnonzero(~active)
+            x0 = (grid.op.apply(sigma) - grid.y + s)[free] + grid.y[free]
+            sigma, s, its, relres, ok = _dual_solve(grid, free, load, x0, tol, restart,
+                                                    max_inner)
+            inner.append(its)
         else:
             idx = np.flatnonzero(active)
             x0 = sigma[idx]
