@@ -34,7 +34,7 @@ from . import _kernels
 from ._influence import influence_coefficients_nd
 from ._accepted import MAX_NODES, validate
 from ._assemble import STATUS_TARGET, _friction, _full_patch, _patches, build_result
-from ._inputs import Prony, Sinusoid, _Profile, _bad
+from ._inputs import Prony, Sinusoid, _bad
 from ._operator import CirculantOperator, gmres
 from ._result import BemResult
 
@@ -356,29 +356,19 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     ----------
     Eq. (2.2)-(2.5) (operator), (3.1) (friction), Appendix B (full contact).
     """
-    validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
-             profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes)
-    if profile is None:
-        profile = Sinusoid(1.0 if hk is None else hk)
-    elif hk is not None:
-        raise _bad("hk", hk, f"no hk with profile={profile!r}: the profile fixes the amplitude")
-    if material is None:
-        material = Prony.standard_linear_solid(3.0 if ratio is None else ratio)
-    elif ratio is not None:
-        raise _bad("ratio", ratio, "no ratio with material=...: the Prony series fixes the moduli")
-    if not isinstance(profile, _Profile):
-        raise _bad("profile", profile, "a bem.Sinusoid, bem.Harmonics or bem.SampledProfile")
-    if not isinstance(material, Prony):
-        raise _bad("material", material, "a bem.Prony creep function")
-    speed = _check_real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0)
     if (load is None) == (penetration is None):
         raise _bad("load", load, "exactly one of load and penetration "
                    f"(got load={load!r}, penetration={penetration!r})")
-    if load is not None:
-        load = _check_real("load", load, "a finite mean pressure > 0", lambda v: v > 0.0)
-    if penetration is not None:
-        penetration = _check_real("penetration", penetration, "Delta/h in (0, 1]",
-                                  lambda v: 0.0 < v <= 1.0)
+    validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
+             profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes)
+    # validate has refused everything outside bem.ACCEPTED (and conflicting options)
+    if profile is None:
+        profile = Sinusoid(1.0 if hk is None else hk)
+    if material is None:
+        material = Prony.standard_linear_solid(3.0 if ratio is None else ratio)
+    speed = float(speed)
+    load = None if load is None else float(load)
+    penetration = None if penetration is None else float(penetration)
     if nodes is not None:
         nodes = _check_positive_int("nodes", nodes, 8)
         for name, v in (("rtol", rtol), ("max_nodes", max_nodes)):
