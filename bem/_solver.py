@@ -181,9 +181,9 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             inner.append(0)
             relres = 0.0
             ok = True
-        elif load is not None and 2 * int(np.count_nonzero(active)) > n:
-            # most panels in contact: solve for the displacements of the few free panels
-            # instead (memory and work scale with the free set, not the contact)
+        elif load is not None and n >= DUAL_MIN_NODES and 2 * int(np.count_nonzero(active)) > n:
+            # most panels in contact on a large grid: solve for the displacements of the few
+            # free panels instead (memory and work scale with the free set, not the contact)
             free = np.flatnonzero(~active)
             x0 = (grid.op.apply(sigma) - grid.y + s)[free] + grid.y[free]
             sigma, s, its, relres, ok = _dual_solve(grid, free, load, x0, tol, restart,
@@ -272,6 +272,11 @@ MAX_NODES_RETRY = 2 ** 21
 MAX_NODES_FULL_RETRY = 2 ** 18
 #: consecutive failed grids, none converged yet, after which the adaptive mesh gives up
 MAX_FAILED_FROM_SCRATCH = 5
+#: grids from which a mostly-in-contact step solves on the free panels (_dual_solve): there the
+#: memory matters, and the separation it gives differs from the primal step's by ~1e-11
+#: relative (rounding amplified by C^+), far below the discretisation error at such N; on
+#: smaller grids the primal step, whose gaps meet the Krylov tolerance exactly, is kept
+DUAL_MIN_NODES = 2 ** 19
 #: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
 ACTIVE_SET_ROUNDOFF = 2e-13
 #: the default accuracy target of the adaptive mesh
