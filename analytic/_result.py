@@ -7,14 +7,13 @@ Units as in `analytic/__init__.py`; positions x/λ in the crest frame (material 
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.optimize import brentq
 
-import viscosine
 from viscosine import Fields
-from viscosine._protocol import SCALAR_KEYS, Patch, _plain
+from viscosine._protocol import SCALAR_KEYS, Patch, _plain, record
 
 from . import _kernels as K
 from ._closure import State
@@ -125,23 +124,7 @@ class Solution:
 
     def as_dict(self):
         """The JSON record (serialisable with ``allow_nan=False``; non-finite values are None)."""
-        rec = {"solver": "analytic", "version": viscosine.__version__,
-               "control": self.control,
-               "load_asked": self.asked if self.control == "load" else None,
-               "penetration_asked": self.asked if self.control == "penetration" else None,
-               "load": self.load, "speed": self.speed, "ratio": self.ratio, "hk": self.hk}
-        rec.update(self.scalars())
-        rec.update({"separation": self.separation, "success": self.success,
-                    "message": self.message, "warnings": list(self.warnings)})
-        if self.success:
-            rec.update({"max_pressure": self.max_pressure, "x_max_pressure": self.x_max_pressure,
-                        "n_patches": self.n_patches,
-                        "patches": [asdict(p) for p in self.patches]})
-        else:
-            rec.update({"max_pressure": None, "x_max_pressure": None, "n_patches": 0,
-                        "patches": []})
-        rec.update({"diagnostics": self.diagnostics, "error_estimate": None})
-        return _plain(rec)
+        return record(self, "analytic")
 
     # ------------------------------------------------------------------ fields
     def _sigma(self, theta):

@@ -13,12 +13,6 @@ from . import solver
 from ._accepted import ACCEPTED
 from .full_contact import threshold_speed, transition_load
 
-# the SI input behind each dimensionless group, to name it when the group is out of range
-_SOURCE = {"load": ("mean_pressure", "p∞(1 − ν²)/E0"), "penetration": ("penetration", "Δ/h"),
-           "speed": ("speed", "V τ 2π/λ"), "ratio": ("Einf", "Einf/E0"),
-           "hk": ("amplitude", "amplitude·2π/wavelength")}
-
-
 def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
              penetration=None):
     """Solve the paper's problem from SI data.
@@ -57,20 +51,7 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
     sc = _si.scales(E0=E0, Einf=Einf, tau=tau, nu=nu, wavelength=wavelength,
                     amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
                     penetration=penetration)
-    groups = {"speed": sc.speed, "ratio": sc.ratio, "hk": sc.hk}
-    if sc.load is not None:
-        groups["load"] = sc.load
-    else:
-        groups["penetration"] = sc.penetration
-    given = {"load": mean_pressure, "penetration": penetration, "speed": speed, "ratio": Einf,
-             "hk": amplitude}
-    for name, value in groups.items():
-        try:
-            solver.validate(**{name: value})
-        except ValueError:
-            si_name, formula = _SOURCE[name]
-            raise ValueError(f"{si_name}={given[name]!r} is not allowed: it gives {formula} = "
-                             f"{value!r}, outside the accepted {ACCEPTED[name][2]}") from None
+    groups = _si.groups(sc, solver.validate, ACCEPTED)
     sol = solver.solve(**groups)
     vth = threshold_speed(sol.load, sc.ratio, sc.hk) if sol.success else None
     return _si.result(sol, sc, full_contact_load=transition_load(sc.speed, sc.ratio, sc.hk),

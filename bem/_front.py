@@ -9,12 +9,6 @@ from . import _solver
 from ._accepted import ACCEPTED, validate
 from ._inputs import Prony
 
-# the SI input behind each dimensionless group, to name it when the group is out of range
-_SOURCE = {"load": ("mean_pressure", "p∞(1 − ν²)/E0"), "penetration": ("penetration", "Δ/h"),
-           "speed": ("speed", "V τ 2π/λ"), "ratio": ("Einf", "Einf/E0"),
-           "hk": ("amplitude", "amplitude·2π/wavelength")}
-
-
 def sweep(*, load=None, penetration=None, speed, errors=False, **options):
     """Solve every (load or penetration, speed) pair: loads outer, speeds inner.
 
@@ -75,20 +69,7 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
     sc = _si.scales(E0=E0, Einf=Einf, tau=tau, nu=nu, wavelength=wavelength,
                     amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
                     penetration=penetration)
-    groups = {"speed": sc.speed, "ratio": sc.ratio, "hk": sc.hk}
-    if sc.load is not None:
-        groups["load"] = sc.load
-    else:
-        groups["penetration"] = sc.penetration
-    given = {"load": mean_pressure, "penetration": penetration, "speed": speed, "ratio": Einf,
-             "hk": amplitude}
-    for name, value in groups.items():
-        try:
-            validate(**{name: value}, **({"hk": sc.hk} if name == "load" else {}))
-        except ValueError:
-            si_name, formula = _SOURCE[name]
-            raise ValueError(f"{si_name}={given[name]!r} is not allowed: it gives {formula} = "
-                             f"{value!r}, outside the accepted {ACCEPTED[name][2]}") from None
+    groups = _si.groups(sc, validate, ACCEPTED, with_hk=("load",))
     validate(**{k: v for k, v in bem_options.items()})
     sol = _solver.solve(**groups, **bem_options)
     material = Prony.standard_linear_solid(sc.ratio)

@@ -3,13 +3,12 @@ semi-analytic road (`scalars`, `as_dict`, `fields`, patches, diagnostics)."""
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any, Mapping
 
 import numpy as np
 
-import viscosine
 from viscosine import Fields, _protocol
 from viscosine._protocol import SCALAR_KEYS, _plain
 
@@ -197,27 +196,12 @@ class BemResult:
         The keys of the semi-analytic road's record plus ``nodes`` and, on an adaptive mesh,
         ``rtol``.
         """
-        rec = {"solver": "bem", "version": viscosine.__version__, "control": self.control,
-               "load_asked": self.asked if self.control == "load" else None,
-               "penetration_asked": self.asked if self.control == "penetration" else None,
-               "load": self.load, "speed": self.speed, "ratio": self.ratio, "hk": self.hk,
-               "nodes": self.nodes}
+        inputs = {"nodes": self.nodes}
         if self.rtol is not None:
-            rec["rtol"] = self.rtol
-        rec.update(self.scalars())
-        rec.update({"separation": self.separation, "success": self.success,
-                    "message": self.message, "warnings": list(self.warnings)})
-        if self.success:
-            rec.update({"max_pressure": self.max_pressure, "x_max_pressure": self.x_max_pressure,
-                        "n_patches": self.n_patches,
-                        "patches": [asdict(p) for p in self.patches]})
-        else:
-            rec.update({"max_pressure": None, "x_max_pressure": None, "n_patches": 0,
-                        "patches": []})
-        rec.update({"diagnostics": self.diagnostics,
-                    "error_estimate": None if self.error_estimate is None
-                    else dict(self.error_estimate)})
-        return _plain(rec)
+            inputs["rtol"] = self.rtol
+        return _protocol.record(self, "bem", inputs=inputs,
+                                error_estimate=None if self.error_estimate is None
+                                else dict(self.error_estimate))
 
     def fields(self, x_over_lambda=None) -> Fields:
         """Pressure, displacement and gap over one period.

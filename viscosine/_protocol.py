@@ -7,7 +7,7 @@ point'); positions x/λ in the crest frame.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 
 import numpy as np
 
@@ -66,3 +66,30 @@ class Patch:
     ka: float
     ke: float | None
     ke_hat: float
+
+
+def record(res, solver, *, inputs=None, error_estimate=None) -> dict:
+    """The JSON record both roads' ``as_dict`` return (``allow_nan=False``-safe).
+
+    ``res`` follows the result protocol (control, asked, load, speed, ratio, hk, ``scalars()``,
+    separation, success, message, warnings, max_pressure, x_max_pressure, n_patches, patches,
+    diagnostics); ``inputs`` are the road's own further inputs, recorded after hk.
+    """
+    from . import __version__
+    rec = {"solver": solver, "version": __version__, "control": res.control,
+           "load_asked": res.asked if res.control == "load" else None,
+           "penetration_asked": res.asked if res.control == "penetration" else None,
+           "load": res.load, "speed": res.speed, "ratio": res.ratio, "hk": res.hk}
+    rec.update(inputs or {})
+    rec.update(res.scalars())
+    rec.update({"separation": res.separation, "success": res.success,
+                "message": res.message, "warnings": list(res.warnings)})
+    if res.success:
+        rec.update({"max_pressure": res.max_pressure, "x_max_pressure": res.x_max_pressure,
+                    "n_patches": res.n_patches,
+                    "patches": [asdict(p) for p in res.patches]})
+    else:
+        rec.update({"max_pressure": None, "x_max_pressure": None, "n_patches": 0,
+                    "patches": []})
+    rec.update({"diagnostics": res.diagnostics, "error_estimate": error_estimate})
+    return _plain(rec)

@@ -42,6 +42,7 @@ class SIScales:
     wavelength: float   # λ [m]
     amplitude: float    # h [m]
     tau: float          # creep time [s]
+    given: dict         # the SI inputs each group comes from, as passed (for refusals)
 
 
 def scales(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
@@ -65,7 +66,37 @@ def scales(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=Non
     else:
         pen = _real("penetration", penetration, "m", lambda v: 0.0 < v <= h,
                     f"a finite depth in (0, amplitude = {h!r}]") / h
-    return SIScales(Einf / E0, h * k, V * tau * k, load, pen, k, estar, lam, h, tau)
+    given = {"load": mean_pressure, "penetration": penetration, "speed": speed, "ratio": Einf,
+             "hk": amplitude}
+    return SIScales(Einf / E0, h * k, V * tau * k, load, pen, k, estar, lam, h, tau, given)
+
+
+# the SI input behind each dimensionless group, to name it when the group is out of range
+_SOURCE = {"load": ("mean_pressure", "p∞(1 − ν²)/E0"), "penetration": ("penetration", "Δ/h"),
+           "speed": ("speed", "V τ 2π/λ"), "ratio": ("Einf", "Einf/E0"),
+           "hk": ("amplitude", "amplitude·2π/wavelength")}
+
+
+def groups(sc: SIScales, validate, accepted, with_hk=()) -> dict:
+    """The dimensionless keyword arguments of a road's ``solve`` for the SI problem `sc`, each
+    checked by that road's ``validate`` against its ``accepted`` ranges.
+
+    A group outside them is refused naming the SI input it comes from.  ``with_hk`` names the
+    groups whose range the road states relative to hk (validated together with it).
+    """
+    out = {"speed": sc.speed, "ratio": sc.ratio, "hk": sc.hk}
+    if sc.load is not None:
+        out["load"] = sc.load
+    else:
+        out["penetration"] = sc.penetration
+    for name, value in out.items():
+        try:
+            validate(**{name: value}, **({"hk": sc.hk} if name in with_hk else {}))
+        except ValueError:
+            si_name, formula = _SOURCE[name]
+            raise ValueError(f"{si_name}={sc.given[name]!r} is not allowed: it gives {formula} = "
+                             f"{value!r}, outside the accepted {accepted[name][2]}") from None
+    return out
 
 
 @dataclass(frozen=True)
