@@ -32,6 +32,7 @@ Fourier check (mode ``n``, ``n != 0``): the symbol of the operator is
 """
 from __future__ import annotations
 
+import math
 from functools import lru_cache
 
 import numpy as np
@@ -44,6 +45,9 @@ _N_NEAR = 16
 _N_FAR = 9
 #: intervals within this many panels of a kink use the near rule
 _NEAR_BAND = 3
+#: the sawtooth ratio sigma_i/sigma_(i+1) the collocation shift of a memory term allows
+#: (see collocation_shift): a sawtooth left by the discretisation decays by this much per panel
+SAWTOOTH_RATIO = 0.3
 #: above this a = h/L the weight e^(-a t) is treated as e^(-a t) on [0, inf)
 _A_LAGUERRE = 120.0
 
@@ -171,6 +175,72 @@ def memory_coefficients(nodes: int, length: float) -> np.ndarray:
     return out
 
 
+def collocation_shift(h: float, length: float, j_local: float, j_i: float) -> float:
+    """Upstream-fitted collocation shift ``delta`` of one memory term, in wavelengths.
+
+    Where the memory length ``L`` spans a panel or more but the pressure relaxation layer
+    (``L j_local/(j_local + J_i)``) is thinner than one, collocation at the panel centre
+    treats the memory integral like the trapezoidal rule treats a stiff decay: a discrete
+    pressure mode ``sigma_j ~ r^j`` with ``r`` near -1 (a sawtooth from the leading edge,
+    growing with the stiffness E_inf/E0) then solves the homogeneous contact equations.
+    Model: ``v = j_local sigma + (J_i/L) int_0^inf exp(-y/L) sigma(X + y) dy`` with
+    piecewise-constant sigma, its memory part collocated ``delta`` downstream of the
+    centre.  Differencing gives ``sigma_i/sigma_(i+1) = q - B sqrt(q)/A`` with ``q =
+    exp(-h/L)``, ``A = j_local + J_i (1 - sqrt(q) E)``, ``B = J_i (1 - q) E``,
+    ``E = exp(-delta/L)``.  The shift is zero where this ratio is already at least
+    ``-SAWTOOTH_RATIO`` (resolved layers, short memories, E_inf/E0 <= 3); otherwise it is
+    the smallest that brings the ratio up to ``-SAWTOOTH_RATIO`` (it then tends to the
+    backward-Euler point ``h/2``).  ``j_local`` is J(0+) plus what the other terms add at
+    once over half a panel.
+    """
+    if not length > 0.0 or j_i <= 0.0:
+        return 0.0
+    s = math.exp(-0.5 * h / length)
+    ratio = s * s - j_i * (1.0 - s * s) * s / (j_local + j_i * (1.0 - s))
+    if ratio >= -SAWTOOTH_RATIO:
+        return 0.0
+    k = SAWTOOTH_RATIO
+    e = (s * s + k) * (j_local + j_i) / (j_i * s * (1.0 + k))
+    return min(max(-length * math.log(e), 0.0), 0.5 * h)
+
+
+def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.ndarray:
+    """Memory coefficients collocated ``delta`` downstream of the panel centres.
+
+    ``(1/L) int_0^inf exp(-y/L) c(X_m - delta + y) dy = exp(-delta/L) M_m + (delta/L)
+    int_0^1 exp(-(delta/L) t) c(X_m - delta + delta t) dt``, with ``M_m`` of
+    :func:`memory_coefficients`.  The second integral is over a fraction of a panel on
+    which ``delta/L <= 1.2`` (see :func:`collocation_shift`): Gauss-Legendre with the weight
+    folded in, graded toward t = 0 for m = 0 and 1, whose intervals start within
+    ``h/2 - delta`` of a kink of c.
+    """
+    base = memory_coefficients(nodes, length)
+    if delta <= 0.0:
+        return base
+    a = delta / length
+    m = np.arange(nodes)
+    x0 = np.where(m <= nodes // 2, m, m - nodes) / nodes - delta
+    g, gw = np.polynomial.legendre.leggauss(16)
+    t = 0.5 * (g + 1.0)
+    w = 0.5 * gw * np.exp(-a * t)
+    acc = np.zeros(nodes)
+    vals = np.empty(nodes)
+    for tq, wq in zip(t, w):
+        _kernels.panel_values(x0 + delta * tq, nodes, vals)
+        acc += wq * vals
+    # the two intervals next to a kink: composite rule graded geometrically toward t = 0
+    b = np.concatenate(([0.0], 0.25 ** np.arange(26, -1, -1)))
+    half = 0.5 * np.diff(b)
+    mid = 0.5 * (b[1:] + b[:-1])
+    tt = (mid[:, None] + half[:, None] * g[None, :]).ravel()
+    ww = (half[:, None] * gw[None, :]).ravel() * np.exp(-a * tt)
+    for j in (0, 1):
+        v = np.empty(tt.size)
+        _kernels.panel_values(x0[j] + delta * tt, nodes, v)
+        acc[j] = float(np.dot(ww, v))
+    return math.exp(-a) * base + a * acc
+
+
 def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], ...],
                               speed: float, nodes: int) -> np.ndarray:
     """First column of the circulant operator for a Prony creep function.
@@ -193,12 +263,18 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
     """
     base = elastic_coefficients(nodes)
     total = j_plus * base
-    for j_i, tau_i in terms:
+    h = 1.0 / nodes
+    lengths = [speed * tau_i / (2.0 * np.pi) for _, tau_i in terms]
+    # what each term adds at once over half a panel (all of J_i where its memory is short)
+    local = [j_i * -math.expm1(-0.5 * h / ln) if ln > 0.0 else j_i
+             for (j_i, _), ln in zip(terms, lengths)]
+    for i, ((j_i, _), length) in enumerate(zip(terms, lengths)):
         if j_i == 0.0:
             continue
-        length = speed * tau_i / (2.0 * np.pi)
         if length == 0.0:
             total = total + j_i * base  # fully relaxed: J(0+) + J_i acts at once
         else:
-            total = total + j_i * memory_coefficients(nodes, length)
+            j_local = j_plus + sum(local) - local[i]
+            delta = collocation_shift(h, length, j_local, j_i)
+            total = total + j_i * shifted_memory_coefficients(nodes, length, delta)
     return total

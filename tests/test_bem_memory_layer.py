@@ -2,8 +2,10 @@
 many panels resolve the layer (below one panel the result says so)."""
 import math
 
+import numpy as np
 import pytest
 
+import analytic
 import bem
 
 
@@ -32,3 +34,90 @@ def test_unresolved_layer_is_reported():
     assert "memory layer" in r.message
     r = bem.solve(profile=bem.Sinusoid(1.0), material=sls, speed=1.0, nodes=1024, load=0.3)
     assert r.memory_layer_panels > 50 and "memory layer" not in r.message
+
+
+# --------------------------------------------------------------------------------------------
+# The collocation shift of a memory term whose pressure layer is thinner than a panel
+# --------------------------------------------------------------------------------------------
+from bem import _influence  # noqa: E402  (the shift is internal to the coefficients)
+
+#: a stiff material at low speed: memory length ~25 panels at N = 16384, layer 0.04 panel
+STIFF_SLOW = dict(load=0.0011506985570461663, speed=0.009753117343529079,
+                  ratio=593.1916580074861, hk=8.382036304275601)
+
+
+def _model_ratio(h, length, j_local, j_i, delta):
+    """sigma_i/sigma_(i+1) of the homogeneous model equations (collocation_shift's docstring)."""
+    s = math.exp(-0.5 * h / length)
+    e = math.exp(-delta / length)
+    return s * s - j_i * (1 - s * s) * e * s / (j_local + j_i * (1 - s * e))
+
+
+@pytest.mark.parametrize("ratio", [1.01, 1.5, 3.0])
+def test_no_shift_for_soft_materials(ratio):
+    """Up to E_inf/E0 = 3 the centred collocation never forms a sawtooth worse than -0.3 per
+    panel: no shift, at any panel size against the memory length."""
+    jp, ji = 1.0 / ratio, 1.0 - 1.0 / ratio
+    for x in np.logspace(-6, 6, 400):  # h/L
+        assert _influence.collocation_shift(x, 1.0, jp, ji) == 0.0
+
+
+@pytest.mark.parametrize("ratio", [10.0, 100.0, 1000.0])
+def test_shift_brings_the_sawtooth_ratio_to_its_bound(ratio):
+    jp, ji = 1.0 / ratio, 1.0 - 1.0 / ratio
+    shifted = 0
+    for x in np.logspace(-6, 6, 400):
+        d = _influence.collocation_shift(x, 1.0, jp, ji)
+        assert 0.0 <= d <= 0.5 * x
+        r0 = _model_ratio(x, 1.0, jp, ji, 0.0)
+        if r0 >= -_influence.SAWTOOTH_RATIO:
+            assert d == 0.0
+        else:
+            shifted += 1
+            assert _model_ratio(x, 1.0, jp, ji, d) == pytest.approx(-_influence.SAWTOOTH_RATIO,
+                                                                    abs=1e-9)
+        if x < 1e-3 * (jp / (jp + ji)) or x > 10.0:  # resolved layer, or memory within a panel
+            assert d == 0.0
+    assert shifted > 0
+
+
+@pytest.mark.parametrize("frac", [0.1, 0.3, 0.4999])
+def test_shifted_coefficients_against_quadrature(frac):
+    """The shifted memory coefficient is its defining integral at X_m - delta."""
+    from scipy.integrate import quad
+    nodes, length = 64, 0.02
+    delta = frac / nodes
+    coef = _influence.shifted_memory_coefficients(nodes, length, delta)
+    one = np.empty(1)
+
+    def c(x):
+        bem._kernels.panel_values(np.array([x]), nodes, one)
+        return one[0]
+
+    for m in (0, 1, 2, -1, 5):
+        x0 = m / nodes - delta
+        kinks = sorted(b - x0 for b in ((k + 0.5) / nodes for k in range(-3, 40)) if b > x0)
+        ref = quad(lambda y: math.exp(-y / length) * c(x0 + y), 0.0, 40 * length,
+                   points=kinks[:45], limit=500, epsabs=1e-15, epsrel=1e-13)[0] / length
+        assert abs(coef[m] - ref) <= 1e-13 * abs(ref), m
+
+
+def test_stiff_slow_contact_has_no_sawtooth(monkeypatch):
+    """E_inf/E0 ~ 600 at low speed: with the shift one patch, a monotone pressure except at
+    the last few panels, and a handful of active-set steps; centred collocation (shift off)
+    gives a sawtooth over the contact, a spurious second patch, and dozens of steps."""
+    def solve():
+        r = bem.solve(**STIFF_SLOW, nodes=16384, nested=False, max_outer=200)
+        assert r.success, r.message
+        s = np.asarray(r.fields().pressure)
+        d = np.diff(s[s > 0])
+        flips = int(np.count_nonzero(np.sign(d[1:]) != np.sign(d[:-1])))
+        return r, flips
+
+    r, flips = solve()
+    assert r.n_patches == 1 and flips <= 8 and r.diagnostics["levels"][-1][1] <= 10
+    ref = analytic.solve(**STIFF_SLOW)
+    assert abs(r.mu / ref.mu - 1) < 2e-3 and abs(r.ka - ref.ka) < 1e-4
+    monkeypatch.setattr(_influence, "SAWTOOTH_RATIO", 1.0)  # never shift
+    r, flips = solve()
+    assert r.n_patches == 2 and flips > 50 and r.diagnostics["levels"][-1][1] > 30
