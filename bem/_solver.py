@@ -144,7 +144,7 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
 
     b = -load - g
     # C^+ amplifies the rounding of u by up to max|1/symbol|: below that the residual cannot go
-    floor = 16.0 * np.finfo(float).eps * float(np.max(np.abs(op.inverse_symbol))) * grid.amp
+    floor = _dual_floor(grid)
     atol = max(tol * load, floor) * math.sqrt(m)
     z, its, res, ok = gmres(matvec, precond, b, x0, atol, restart, max_inner)
     u = grid.y.copy()
@@ -155,6 +155,12 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     sigma[free] = 0.0
     s = float(u.mean())
     return sigma, s, its, res / load * grid.amp, ok
+
+
+def _dual_floor(grid: _Grid):
+    """The pressure error (units of the pressure) below which the free-panel step cannot go:
+    C^+ amplifies the rounding of u by up to max|1/symbol|."""
+    return 16.0 * np.finfo(float).eps * float(np.max(np.abs(grid.op.inverse_symbol))) * grid.amp
 
 
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
@@ -169,6 +175,10 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     s = s0
     gap = np.zeros(n)
     new = np.empty(n, dtype=np.bool_)
+    # the free-panel step on a large grid, unless its rounding floor is a visible part of the
+    # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
+    dual = (load is not None and n >= DUAL_MIN_NODES
+            and _dual_floor(grid) <= DUAL_MAX_FLOOR * load)
     for it in range(1, max_outer + 1):
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
@@ -181,13 +191,18 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             inner.append(0)
             relres = 0.0
             ok = True
-        elif load is not None and n >= DUAL_MIN_NODES and 2 * int(np.count_nonzero(active)) > n:
+        elif dual and 2 * int(np.count_nonzero(active)) > n:
             # most panels in contact on a large grid: solve for the displacements of the few
             # free panels instead (memory and work scale with the free set, not the contact)
             free = np.flatnonzero(~active)
             x0 = (grid.op.apply(sigma) - grid.y + s)[free] + grid.y[free]
             sigma, s, its, relres, ok = _dual_solve(grid, free, load, x0, tol, restart,
                                                     max_inner)
+            wide = _retry_restart(restart, free.size)
+            if not ok and wide > restart:  # as below
+                sigma, s, more, relres, ok = _dual_solve(grid, free, load, x0, tol, wide,
+                                                         max_inner)
+                its += more
             inner.append(its)
         else:
             idx = np.flatnonzero(active)
@@ -196,6 +211,13 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
                 x0 = np.append(x0, s)
             sigma, s, its, relres, ok = _linear_solve(grid, idx, load, sep, x0, tol,
                                                       restart, max_inner)
+            wide = _retry_restart(restart, idx.size)
+            if not ok and wide > restart:
+                # restarted GMRES can stagnate where the operator is far from normal (a stiff
+                # material, loss tangent ~ 10, near its memory length): once more, wider
+                sigma, s, more, relres, ok = _linear_solve(grid, idx, load, sep, x0, tol,
+                                                           wide, max_inner)
+                its += more
             inner.append(its)
         gap = grid.op.apply(sigma) - grid.y + s
         if not ok:
@@ -217,6 +239,13 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         active = new.copy()
     return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
             "inner": inner, "relres": relres, "status": status, "message": message}
+
+
+def _retry_restart(restart, size):
+    """The restart length of the second try of a stagnated Krylov solve: KRYLOV_RETRY_RESTART,
+    or less where its basis (restart + 1 vectors of `size`) would pass KRYLOV_RETRY_BYTES."""
+    fit = KRYLOV_RETRY_BYTES // (8 * max(size, 1)) - 1
+    return max(restart, min(KRYLOV_RETRY_RESTART, fit))
 
 
 def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
@@ -277,6 +306,15 @@ MAX_FAILED_FROM_SCRATCH = 5
 #: relative (rounding amplified by C^+), far below the discretisation error at such N; on
 #: smaller grids the primal step, whose gaps meet the Krylov tolerance exactly, is kept
 DUAL_MIN_NODES = 2 ** 19
+#: ... and where its rounding floor (_dual_floor) is at most this fraction of the load: the
+#: standard linear solid with E_inf/E0 = 3 up to 2^21 panels; stiffer materials, whose floor
+#: reaches 1e-7 of the load and lets pressures of that size sit on free panels, keep the primal
+DUAL_MAX_FLOOR = 2e-8
+#: restart length of the second try of a Krylov solve that stagnated with `restart` (the
+#: default 8 can stagnate for E_inf/E0 in the hundreds; 40 has not been seen to)
+KRYLOV_RETRY_RESTART = 40
+#: memory bound of that second try's Krylov basis (40 vectors of 2^21 panels)
+KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
 #: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
 ACTIVE_SET_ROUNDOFF = 2e-13
 #: the default accuracy target of the adaptive mesh
@@ -341,7 +379,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     max_outer : int
         Active-set iterations per grid.
     restart, max_inner : int
-        GMRES restart length and iteration cap per linear solve.
+        GMRES restart length and iteration cap per linear solve.  A solve that stagnates is
+        tried once more with a restart length of 40 (less where its basis would pass 690 MB).
     nested : bool
         With ``nodes``: solve the coarser grids first (their contact starts the next grid, and
         the last three give the error estimate).  False solves ``nodes`` alone, from the

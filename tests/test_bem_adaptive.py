@@ -130,13 +130,46 @@ def test_dual_solve_equals_the_primal_on_the_same_contact():
     assert np.max(np.abs(sp - sd)) < 1e-8 * np.max(sp) and abs(s_p - s_d) < 1e-10
 
 
-def test_large_grid_near_transition_uses_the_free_panels_and_is_right():
+def test_large_grid_near_transition_uses_the_free_panels_and_is_right(monkeypatch):
     """From 2^19 panels a mostly-in-contact step solves on the free panels; just below the
     transition the answer still lies within its estimate of the semi-analytic road."""
     from bem import _solver as S
     n = S.DUAL_MIN_NODES
+    calls = _spy_dual(monkeypatch)
     ref = analytic.solve(load=0.66, speed=1.0)
     r = bem.solve(load=0.66, speed=1.0, nodes=n)
     assert r.success and r.contact_fraction > 0.5 and r.levels[-1][0] == n
+    assert calls and all(size == n for size in calls)
+    for key, err in _true(r, ref).items():
+        assert err <= r.error_estimate[key], (key, err, r.error_estimate[key])
+
+
+def _spy_dual(monkeypatch):
+    """Grid sizes on which the free-panel step ran."""
+    from bem import _solver as S
+    calls = []
+    real = S._dual_solve
+
+    def spy(grid, *args, **kw):
+        calls.append(grid.n)
+        return real(grid, *args, **kw)
+
+    monkeypatch.setattr(S, "_dual_solve", spy)
+    return calls
+
+
+def test_stiff_material_keeps_the_primal_step_on_large_grids(monkeypatch):
+    """E_inf/E0 = 155: 1/symbol is ~50 times larger than at 3, so the free-panel step's
+    rounding floor would leave ~1e-7 of the load on free panels (enough to make the active set
+    cycle at 2^21); the primal step is kept, and the answer lies within its estimate."""
+    from bem import _solver as S
+    kw = dict(load=0.2865632629223341, speed=0.1325833457667525, ratio=154.70144143871462,
+              hk=0.853255930270687)
+    n = S.DUAL_MIN_NODES
+    calls = _spy_dual(monkeypatch)
+    r = bem.solve(**kw, nodes=n)
+    assert r.success and r.contact_fraction > 0.5, r.message
+    assert calls == []
+    ref = analytic.solve(**kw)
     for key, err in _true(r, ref).items():
         assert err <= r.error_estimate[key], (key, err, r.error_estimate[key])
