@@ -289,9 +289,9 @@ def _check_real(name, value, allowed, test):
 
 #: first grid of the refinement sequence (coarser grids only ever gave a start)
 START_NODES = 512
-#: the default cap of the adaptive mesh: 2^23 (about 2 GB, 10-20 s for that grid), or less
-#: where memory is smaller; max_nodes may raise it up to bem.MAX_NODES
-ADAPTIVE_MAX_NODES = min(MAX_NODES, 2 ** 23)
+#: the default cap of the adaptive mesh: the memory cap bem.MAX_NODES (2^24 where memory
+#: allows, about 2.5 GB and a minute for that grid)
+ADAPTIVE_MAX_NODES = MAX_NODES
 #: active-set steps on a grid started from a converged coarser one (it usually needs 1 to 5)
 MAX_OUTER_AFTER_CONVERGED = 15
 #: the largest grid on which a failed solve is retried from the elastic contact
@@ -369,7 +369,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         Default 1e-6.
     max_nodes : int, optional
         Adaptive mesh only: the largest grid (a power of two, up to ``bem.MAX_NODES``);
-        default ``2^23`` (or the memory cap where it is lower).
+        default ``bem.MAX_NODES`` (2^24, or less where memory is smaller).
         When the target is not met there, the result is not a success and says which
         estimate was reached.
     tol : float

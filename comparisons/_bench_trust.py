@@ -231,7 +231,9 @@ def memory(exponent=20, out=sys.stdout):
     for label, kw in (("partial, p̃ = 0.3, V/V0 = 1", dict(load=0.3, speed=1.0)),
                       ("1.6 % below the transition, p̃ = 0.66, V/V0 = 1",
                        dict(load=0.66, speed=1.0)),
-                      ("full, p̃ = 2, V/V0 = 1", dict(load=2.0, speed=1.0))):
+                      ("full, p̃ = 2, V/V0 = 1", dict(load=2.0, speed=1.0)),
+                      ("stiff, E∞/E0 = 155, p̃ = 0.29, V/V0 = 0.13 (mostly in contact, "
+                       "primal step)", dict(load=0.2866, speed=0.1326, ratio=154.7, hk=0.853))):
         _progress(f"memory: {label}")
         tracemalloc.start()
         bem.solve(**kw, nodes=n)
