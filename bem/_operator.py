@@ -38,9 +38,8 @@ class CirculantOperator:
         sym = sfft.rfft(np.asarray(column, dtype=float))  # the column itself is not kept
         sym[0] = 0.0
         self.symbol = sym
-        inv = np.zeros_like(sym)
-        inv[1:] = 1.0 / sym[1:]
-        self.inverse_symbol = inv
+        # the inverse is applied by division, not stored (memory at large N)
+        self.max_inverse = float(1.0 / np.min(np.abs(sym[1:]))) if sym.size > 1 else 0.0
 
     def apply(self, sigma: np.ndarray) -> np.ndarray:
         """k v = C sigma (mean of the result exactly 0)."""
@@ -51,8 +50,27 @@ class CirculantOperator:
     def pseudo_solve(self, v: np.ndarray) -> np.ndarray:
         """sigma with C sigma = v - mean(v) and mean(sigma) = 0."""
         f = sfft.rfft(v)
-        f *= self.inverse_symbol
+        f[0] = 0.0
+        f[1:] /= self.symbol[1:]
         return sfft.irfft(f, self.n, overwrite_x=True)
+
+
+    def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False):
+        """``(C z)[idx]`` (or ``(C^+ z)[idx]``) for ``z`` equal to `values` on `idx` and zero
+        elsewhere, with at most two full-length work arrays alive at a time (memory at large
+        N: the Krylov solves on an active or free set call nothing else)."""
+        z = np.zeros(self.n)
+        z[idx] = values
+        f = sfft.rfft(z)
+        del z
+        if inverse:
+            f[0] = 0.0
+            f[1:] /= self.symbol[1:]
+        else:
+            f *= self.symbol
+        out = sfft.irfft(f, self.n, overwrite_x=True)
+        del f
+        return out[idx]
 
 
 def gmres(matvec, precond, b, x0, atol, restart, maxiter):
@@ -63,6 +81,8 @@ def gmres(matvec, precond, b, x0, atol, restart, maxiter):
     one reorthogonalisation; Givens rotations; at each restart the true residual
     ``b - A x`` is recomputed.
 
+    ``x0`` (the start) is updated in place when it is a float array.
+
     Returns
     -------
     x : ndarray
@@ -72,7 +92,7 @@ def gmres(matvec, precond, b, x0, atol, restart, maxiter):
         ``||b - A x||_2`` (true residual at exit).
     converged : bool
     """
-    x = np.array(x0, dtype=float, copy=True)
+    x = np.asarray(x0, dtype=float)  # a float array x0 is overwritten: no copy at large N
     r = b - matvec(x)
     total = 0
     n = b.size

@@ -46,21 +46,21 @@ class _Grid:
     def __init__(self, profile, material: Prony, speed: float, nodes: int):
         self.n = nodes
         self.h = 1.0 / nodes
-        self.x = np.arange(nodes) / nodes - 0.5
         self.op = CirculantOperator(
             influence_coefficients_nd(material.j_plus, material.terms, speed, nodes))
         y = profile.sample(nodes)
         self.y = y - y.mean()  # rounding only: samples have zero mean
         self.amp = float(profile.amplitude)
 
+    @property
+    def x(self):
+        """Panel centres X_j = j/N - 1/2, made when asked (not kept: memory at large N)."""
+        return np.arange(self.n) / self.n - 0.5
+
 
 def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
-    n = op.n
-
     def apply(x):
-        e = np.zeros(n)
-        e[idx] = x
-        return op.pseudo_solve(e)[idx]
+        return op.apply_on(idx, x, inverse=True)
 
     return apply
 
@@ -79,10 +79,9 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
         f = grid.amp / load
 
         def matvec(z):
-            e = np.zeros(n)
-            e[idx] = z[:na]
             out = np.empty(na + 1)
-            out[:na] = op.apply(e)[idx] + z[na]
+            out[:na] = op.apply_on(idx, z[:na])
+            out[:na] += z[na]
             out[na] = f * z[:na].sum() / n
             return out
 
@@ -98,9 +97,7 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
         b = np.append(grid.y[idx], f * load)
     else:
         def matvec(z):
-            e = np.zeros(n)
-            e[idx] = z
-            return op.apply(e)[idx]
+            return op.apply_on(idx, z)
 
         precond = pinv
         b = grid.y[idx] - sep
@@ -133,14 +130,10 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     del base
 
     def matvec(z):
-        e = np.zeros(n)
-        e[free] = z
-        return op.pseudo_solve(e)[free]
+        return op.apply_on(free, z, inverse=True)
 
     def precond(r):
-        e = np.zeros(n)
-        e[free] = r
-        return op.apply(e)[free]
+        return op.apply_on(free, r)
 
     b = -load - g
     # C^+ amplifies the rounding of u by up to max|1/symbol|: below that the residual cannot go
@@ -160,7 +153,7 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
 def _dual_floor(grid: _Grid):
     """The pressure error (units of the pressure) below which the free-panel step cannot go:
     C^+ amplifies the rounding of u by up to max|1/symbol|."""
-    return 16.0 * np.finfo(float).eps * float(np.max(np.abs(grid.op.inverse_symbol))) * grid.amp
+    return 16.0 * np.finfo(float).eps * grid.op.max_inverse * grid.amp
 
 
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
@@ -194,7 +187,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         elif dual and 2 * int(np.count_nonzero(active)) > n:
             # most panels in contact on a large grid: solve for the displacements of the few
             # free panels instead (memory and work scale with the free set, not the contact)
-            free = np.flatnonzero(~active)
+            free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
             x0 = (grid.op.apply(sigma) - grid.y + s)[free] + grid.y[free]
             sigma, s, its, relres, ok = _dual_solve(grid, free, load, x0, tol, restart,
                                                     max_inner)
@@ -205,7 +198,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
                 its += more
             inner.append(its)
         else:
-            idx = np.flatnonzero(active)
+            idx = np.flatnonzero(active).astype(np.int32)  # N < 2^31; memory
             x0 = sigma[idx]
             if load is not None:
                 x0 = np.append(x0, s)
