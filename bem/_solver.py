@@ -168,6 +168,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     s = s0
     gap = np.zeros(n)
     new = np.empty(n, dtype=np.bool_)
+    roundoff = ACTIVE_SET_ROUNDOFF
     # the free-panel step on a large grid, unless its rounding floor is a visible part of the
     # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
     dual = (load is not None and n >= DUAL_MIN_NODES
@@ -218,13 +219,25 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             message = f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
             break
         # allowances well inside the validity gate's round-off (1e-12 of max σ, 1e-12 h)
-        changed = _kernels.update_active_set(active, sigma, gap, new,
-                                             ACTIVE_SET_ROUNDOFF * float(np.max(sigma)),
-                                             ACTIVE_SET_ROUNDOFF * grid.amp)
+        smax = float(np.max(sigma))
+        changed = _kernels.update_active_set(active, sigma, gap, new, roundoff * smax,
+                                             roundoff * grid.amp)
         if changed == 0:
             status, message = 0, "converged"
             break
         key = np.packbits(new).tobytes()
+        if key in seen and roundoff < CYCLE_ROUNDOFF:
+            # the sets repeat: the panels that flip may all sit within the validity gate's
+            # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
+            # them with that allowance from here on (a second cycle is final)
+            roundoff = CYCLE_ROUNDOFF
+            seen.clear()
+            changed = _kernels.update_active_set(active, sigma, gap, new, roundoff * smax,
+                                                 roundoff * grid.amp)
+            if changed == 0:
+                status, message = 0, "converged (at the validity gate's round-off, after a cycle)"
+                break
+            key = np.packbits(new).tobytes()
         if key in seen:
             status, message = 3, f"active set cycles (outer step {it} repeats step {seen[key]})"
             break
@@ -310,6 +323,8 @@ KRYLOV_RETRY_RESTART = 40
 KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
 #: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
 ACTIVE_SET_ROUNDOFF = 2e-13
+#: ... and once the sets have cycled: just inside the validity gate's 1e-12
+CYCLE_ROUNDOFF = 9e-13
 #: the default accuracy target of the adaptive mesh
 DEFAULT_RTOL = 1e-6
 #: the error estimate is this factor times the first-order bound of the last differences
