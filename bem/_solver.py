@@ -190,54 +190,36 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             # free panels instead (memory and work scale with the free set, not the contact)
             free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
             x0 = (grid.op.apply(sigma) - grid.y + s)[free] + grid.y[free]
-            sigma, s, its, relres, ok = _dual_solve(grid, free, load, x0, tol, restart,
-                                                    max_inner)
-            wide = _retry_restart(restart, free.size)
-            if not ok and wide > restart:  # as below
-                sigma, s, more, relres, ok = _dual_solve(grid, free, load, x0, tol, wide,
-                                                         max_inner)
-                its += more
+            sigma, s, its, relres, ok = _with_retry(
+                lambda r: _dual_solve(grid, free, load, x0, tol, r, max_inner), restart,
+                free.size)
             inner.append(its)
         else:
             idx = np.flatnonzero(active).astype(np.int32)  # N < 2^31; memory
             x0 = sigma[idx]
             if load is not None:
                 x0 = np.append(x0, s)
-            sigma, s, its, relres, ok = _linear_solve(grid, idx, load, sep, x0, tol,
-                                                      restart, max_inner)
-            wide = _retry_restart(restart, idx.size)
-            if not ok and wide > restart:
-                # restarted GMRES can stagnate where the operator is far from normal (a stiff
-                # material, loss tangent ~ 10, near its memory length): once more, wider
-                sigma, s, more, relres, ok = _linear_solve(grid, idx, load, sep, x0, tol,
-                                                           wide, max_inner)
-                its += more
+            sigma, s, its, relres, ok = _with_retry(
+                lambda r: _linear_solve(grid, idx, load, sep, x0, tol, r, max_inner), restart,
+                idx.size)
             inner.append(its)
         gap = grid.op.apply(sigma) - grid.y + s
         if not ok:
             status = 2
             message = f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
             break
-        # allowances well inside the validity gate's round-off (1e-12 of max σ, 1e-12 h)
-        smax = float(np.max(sigma))
-        changed = _kernels.update_active_set(active, sigma, gap, new, roundoff * smax,
-                                             roundoff * grid.amp)
-        if changed == 0:
-            status, message = 0, "converged"
-            break
-        key = np.packbits(new).tobytes()
+        key = _next_active_set(active, sigma, gap, new, roundoff, grid.amp)
         if key in seen and roundoff < CYCLE_ROUNDOFF:
             # the sets repeat: the panels that flip may all sit within the validity gate's
             # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
             # them with that allowance from here on (a second cycle is final)
             roundoff = CYCLE_ROUNDOFF
             seen.clear()
-            changed = _kernels.update_active_set(active, sigma, gap, new, roundoff * smax,
-                                                 roundoff * grid.amp)
-            if changed == 0:
-                status, message = 0, "converged (at the validity gate's round-off, after a cycle)"
-                break
-            key = np.packbits(new).tobytes()
+            key = _next_active_set(active, sigma, gap, new, roundoff, grid.amp)
+        if key is None:
+            status, message = 0, ("converged" if roundoff < CYCLE_ROUNDOFF else
+                                  "converged (at the validity gate's round-off, after a cycle)")
+            break
         if key in seen:
             status, message = 3, f"active set cycles (outer step {it} repeats step {seen[key]})"
             break
@@ -245,6 +227,27 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         active = new.copy()
     return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
             "inner": inner, "relres": relres, "status": status, "message": message}
+
+
+def _next_active_set(active, sigma, gap, new, roundoff, amp):
+    """The active-set rule into `new`, with allowances of `roundoff` times max σ and h (well
+    inside the validity gate's 1e-12 of each); None when nothing changes, else a key of the
+    new set."""
+    changed = _kernels.update_active_set(active, sigma, gap, new,
+                                         roundoff * float(np.max(sigma)), roundoff * amp)
+    return None if changed == 0 else np.packbits(new).tobytes()
+
+
+def _with_retry(solve, restart, size):
+    """``solve(restart)``, and once more with _retry_restart's wider restart if it did not
+    converge: restarted GMRES can stagnate where the operator is far from normal (a stiff
+    material, loss tangent ~ 10, near its memory length).  ``size``: the Krylov vectors'."""
+    sigma, s, its, relres, ok = solve(restart)
+    wide = _retry_restart(restart, size)
+    if not ok and wide > restart:
+        sigma, s, more, relres, ok = solve(wide)
+        its += more
+    return sigma, s, its, relres, ok
 
 
 def _retry_restart(restart, size):
