@@ -11,8 +11,7 @@ V/V0 = Vτk, ratio E∞/E0, hk = h k.
 """
 from __future__ import annotations
 
-import math
-import numbers
+from viscosine._checks import check_reals
 
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is Westergaard's solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30
@@ -48,25 +47,6 @@ ACCEPTED = {
 }
 
 
-def _bad(name, value, allowed):
-    shown = repr(float(value)) if _is_real(value) else repr(value)
-    return ValueError(f"{name}={shown} is not allowed: {allowed}")
-
-
-def _is_real(value):
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
-
-
-def _real(name, value):
-    low, high, text = ACCEPTED[name]
-    if not _is_real(value):
-        raise _bad(name, value, "a real number; " + text)
-    v = float(value)
-    if not math.isfinite(v):
-        raise _bad(name, v, "a finite number; " + text)
-    return v
-
-
 def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None):
     """Check the dimensionless inputs against `ACCEPTED`.
 
@@ -89,20 +69,7 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None):
     if load is not None and penetration is not None:
         raise ValueError(f"load={load!r}, penetration={penetration!r} is not allowed: give "
                          "exactly one of load and penetration")
-    out = {}
-    for name, value in (("load", load), ("penetration", penetration), ("speed", speed),
-                        ("ratio", ratio), ("hk", hk)):
-        if value is None:
-            continue
-        v = _real(name, value)
-        low, high, text = ACCEPTED[name]
-        if name == "ratio":
-            ok = low < v <= high
-        elif name == "speed":
-            ok = v == 0.0 or SPEED_MIN <= v <= high
-        else:
-            ok = low <= v <= high
-        if not ok:
-            raise _bad(name, v, text)
-        out[name] = v
-    return out
+    return check_reals(ACCEPTED, (("load", load), ("penetration", penetration),
+                                  ("speed", speed), ("ratio", ratio), ("hk", hk)),
+                       {"ratio": lambda v: 1.0 < v <= RATIO_MAX,
+                        "speed": lambda v: v == 0.0 or SPEED_MIN <= v <= SPEED_MAX})

@@ -14,6 +14,8 @@ import math
 import numbers
 import os
 
+from viscosine._checks import bad, check_reals, real
+
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is the elastic (relaxed) solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30
 #: p̃∞/(hk): the contact must span panels (the width 2a/λ ≈ (2/π)√(2p̃∞/hk) at light load)
@@ -102,29 +104,10 @@ ACCEPTED = {
 }
 
 
-def _bad(name, value, allowed):
-    shown = repr(float(value)) if _is_real(value) else repr(value)
-    return ValueError(f"{name}={shown} is not allowed: {allowed}")
-
-
-def _is_real(value):
-    return isinstance(value, numbers.Real) and not isinstance(value, bool)
-
-
-def _real(name, value):
-    text = ACCEPTED[name][2]
-    if not _is_real(value):
-        raise _bad(name, value, "a real number; " + text)
-    v = float(value)
-    if not math.isfinite(v):
-        raise _bad(name, v, "a finite number; " + text)
-    return v
-
-
 def _integer(name, value):
     low, high, text = ACCEPTED[name]
     if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise _bad(name, value, text)
+        raise bad(name, value, text)
     v = int(value)
     if not low <= v <= high or (name == "max_nodes" and v & (v - 1)):
         raise ValueError(f"{name}={v!r} is not allowed: {text}")
@@ -135,18 +118,18 @@ def _check_material(material):
     from ._inputs import Prony
     text = ACCEPTED["material"][2]
     if not isinstance(material, Prony):
-        raise _bad("material", material, text)
+        raise bad("material", material, text)
     jp = material.j_plus
     if not J0_MIN <= material.J0 <= J0_MAX:
-        raise _bad("material", material, f"J0={material.J0!r} is outside; {text}")
+        raise bad("material", material, f"J0={material.J0!r} is outside; {text}")
     for j, t in material.terms:
         if not TAU_MIN <= t <= TAU_MAX:
-            raise _bad("material", material, f"tau_i={t!r} is outside; {text}")
+            raise bad("material", material, f"tau_i={t!r} is outside; {text}")
         if 0.0 < j < TERM_MIN * jp:
-            raise _bad("material", material, f"J_i={j!r} is below {TERM_MIN:g} J(0+); {text}")
+            raise bad("material", material, f"J_i={j!r} is below {TERM_MIN:g} J(0+); {text}")
     ratio = material.J0 / jp
     if any(j > 0.0 for j in material.J) and not 1.0 + RATIO_EPS < ratio <= RATIO_MAX:
-        raise _bad("material", material, f"E∞/E0 = J0/J(0+) = {ratio!r} is outside; {text}")
+        raise bad("material", material, f"E∞/E0 = J0/J(0+) = {ratio!r} is outside; {text}")
     return material
 
 
@@ -154,10 +137,10 @@ def _check_profile(profile):
     from ._inputs import _Profile
     text = ACCEPTED["profile"][2]
     if not isinstance(profile, _Profile):
-        raise _bad("profile", profile, text)
+        raise bad("profile", profile, text)
     amp = float(profile.amplitude)
     if not (math.isfinite(amp) and HK_MIN <= amp <= HK_MAX):
-        raise _bad("profile", profile, f"its amplitude is {amp!r}; {text}")
+        raise bad("profile", profile, f"its amplitude is {amp!r}; {text}")
     return amp
 
 
@@ -193,32 +176,20 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
     if hk is not None and profile is not None:
         raise ValueError(f"hk={hk!r} is not allowed: no hk with profile=… (the profile fixes the "
                          "amplitude)")
-    out = {}
-    for name, value in (("penetration", penetration), ("speed", speed), ("ratio", ratio),
-                        ("hk", hk), ("rtol", rtol)):
-        if value is None:
-            continue
-        v = _real(name, value)
-        low, high, text = ACCEPTED[name]
-        if name == "ratio":
-            ok = 1.0 + RATIO_EPS < v <= high
-        elif name == "speed":
-            ok = v == 0.0 or SPEED_MIN <= v <= high
-        else:
-            ok = low <= v <= high
-        if not ok:
-            raise _bad(name, v, text)
-        out[name] = v
+    out = check_reals(ACCEPTED, (("penetration", penetration), ("speed", speed),
+                                 ("ratio", ratio), ("hk", hk), ("rtol", rtol)),
+                      {"ratio": lambda v: 1.0 + RATIO_EPS < v <= RATIO_MAX,
+                       "speed": lambda v: v == 0.0 or SPEED_MIN <= v <= SPEED_MAX})
     amp = out.get("hk", 1.0)
     if profile is not None:
         amp = _check_profile(profile)
     if material is not None:
         _check_material(material)
     if load is not None:
-        v = _real("load", load)
+        v = real("load", load, ACCEPTED["load"][2])
         low, high = LOAD_OVER_AMPLITUDE
         if not (v > 0.0 and low <= v / amp <= high):
-            raise _bad("load", v, ACCEPTED["load"][2] + f" (here hk = {amp!r})")
+            raise bad("load", v, ACCEPTED["load"][2] + f" (here hk = {amp!r})")
         out["load"] = v
     for name, value in (("nodes", nodes), ("max_nodes", max_nodes)):
         if value is not None:
