@@ -11,7 +11,7 @@ V/V0 = Vτk, ratio E∞/E0, hk = h k.
 """
 from __future__ import annotations
 
-from viscosine._checks import check_reals
+from viscosine._checks import at_most_one_control, check_reals
 
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is Westergaard's solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30
@@ -66,9 +66,7 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None):
     ValueError
         ``"name=value is not allowed: what is allowed (and why)"`` for the first bad input.
     """
-    if load is not None and penetration is not None:
-        raise ValueError(f"load={load!r}, penetration={penetration!r} is not allowed: give "
-                         "exactly one of load and penetration")
+    at_most_one_control(load, penetration)
     return check_reals(ACCEPTED, (("load", load), ("penetration", penetration),
                                   ("speed", speed), ("ratio", ratio), ("hk", hk)),
                        {"ratio": lambda v: 1.0 < v <= RATIO_MAX,

@@ -14,7 +14,7 @@ import math
 import numbers
 import os
 
-from viscosine._checks import bad, check_reals, real
+from viscosine._checks import at_most_one_control, bad, check_reals, real
 
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is the elastic (relaxed) solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30
@@ -167,9 +167,7 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
     ValueError
         ``"name=value is not allowed: what is allowed (and why)"`` for the first bad input.
     """
-    if load is not None and penetration is not None:
-        raise ValueError(f"load={load!r}, penetration={penetration!r} is not allowed: give "
-                         "exactly one of load and penetration")
+    at_most_one_control(load, penetration)
     if ratio is not None and material is not None:
         raise ValueError(f"ratio={ratio!r} is not allowed: no ratio with material=… (the Prony "
                          "series fixes the moduli)")

@@ -48,3 +48,10 @@ def check_reals(accepted, given, tests) -> dict:
             raise bad(name, v, text)
         out[name] = v
     return out
+
+
+def at_most_one_control(load, penetration) -> None:
+    """Refuse a load and a penetration given together (each road's solve needs exactly one)."""
+    if load is not None and penetration is not None:
+        raise ValueError(f"load={load!r}, penetration={penetration!r} is not allowed: give "
+                         "exactly one of load and penetration")
