@@ -189,8 +189,9 @@ def collocation_shift(h: float, length: float, j_local: float, j_i: float) -> fl
     exp(-h/L)``, ``A = j_local + J_i (1 - sqrt(q) E)``, ``B = J_i (1 - q) E``,
     ``E = exp(-delta/L)``.  The shift is zero where this ratio is already at least
     ``-SAWTOOTH_RATIO`` (resolved layers, short memories, E_inf/E0 <= 3); otherwise it is
-    the smallest that brings the ratio up to ``-SAWTOOTH_RATIO`` (it then tends to the
-    backward-Euler point ``h/2``).  ``j_local`` is J(0+) plus what the other terms add at
+    the smallest that brings the ratio up to ``-SAWTOOTH_RATIO`` = -k.  The ratio grows with
+    delta, so the shift stays below ``h (1 - k)/(2 (1 + k))`` (0.27 h) and ``delta/L`` below
+    ``ln((1 + k)/(2 sqrt(k)))`` (0.17).  ``j_local`` is J(0+) plus what the other terms add at
     once over half a panel.
     """
     if not length > 0.0 or j_i <= 0.0:
@@ -201,7 +202,7 @@ def collocation_shift(h: float, length: float, j_local: float, j_i: float) -> fl
         return 0.0
     k = SAWTOOTH_RATIO
     e = (s * s + k) * (j_local + j_i) / (j_i * s * (1.0 + k))
-    return min(max(-length * math.log(e), 0.0), 0.5 * h)
+    return max(-length * math.log(e), 0.0)
 
 
 def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.ndarray:
@@ -209,11 +210,14 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.n
 
     ``(1/L) int_0^inf exp(-y/L) c(X_m - delta + y) dy = exp(-delta/L) M_m + (delta/L)
     int_0^1 exp(-(delta/L) t) c(X_m - delta + delta t) dt``, with ``M_m`` of
-    :func:`memory_coefficients`.  The second integral is over a fraction of a panel on
-    which ``delta/L <= 1.2`` (see :func:`collocation_shift`): Gauss-Legendre with the weight
-    folded in, graded toward t = 0 for m = 0 and 1, whose intervals start within
-    ``h/2 - delta`` of a kink of c.
+    :func:`memory_coefficients`.  With the shifts of :func:`collocation_shift` (``delta <=
+    0.27 h``, ``delta/L <= 0.17``) the kinks of c at ``+-h/2`` stay at least 0.23 h from every
+    interval of the second integral, whose length is at most 0.27 h: 16-point Gauss-Legendre
+    with the weight folded in is exact to rounding.
     """
+    if not 0.0 <= delta <= 0.3 / nodes:
+        raise ValueError(f"delta={delta!r} is not allowed: a shift in [0, 0.3 h] "
+                         "(collocation_shift gives at most 0.27 h)")
     base = memory_coefficients(nodes, length)
     if delta <= 0.0:
         return base
@@ -228,16 +232,6 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.n
     for tq, wq in zip(t, w):
         _kernels.panel_values(x0 + delta * tq, nodes, vals)
         acc += wq * vals
-    # the two intervals next to a kink: composite rule graded geometrically toward t = 0
-    b = np.concatenate(([0.0], 0.25 ** np.arange(26, -1, -1)))
-    half = 0.5 * np.diff(b)
-    mid = 0.5 * (b[1:] + b[:-1])
-    tt = (mid[:, None] + half[:, None] * g[None, :]).ravel()
-    ww = (half[:, None] * gw[None, :]).ravel() * np.exp(-a * tt)
-    for j in (0, 1):
-        v = np.empty(tt.size)
-        _kernels.panel_values(x0[j] + delta * tt, nodes, v)
-        acc[j] = float(np.dot(ww, v))
     return math.exp(-a) * base + a * acc
 
 

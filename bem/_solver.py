@@ -242,7 +242,9 @@ def _next_active_set(active, sigma, gap, new, roundoff, amp):
 def _with_retry(solve, restart, size):
     """``solve(restart)``, and once more with _retry_restart's wider restart if it did not
     converge: restarted GMRES can stagnate where the operator is far from normal (a stiff
-    material, loss tangent ~ 10, near its memory length).  ``size``: the Krylov vectors'."""
+    material, loss tangent ~ 10, near its memory length).  ``size``: the Krylov vectors'.
+    GMRES updates its start in place, so the second try starts from the first one's iterate
+    (whose residual is no larger than the start's)."""
     sigma, s, its, relres, ok = solve(restart)
     wide = _retry_restart(restart, size)
     if not ok and wide > restart:
