@@ -41,19 +41,23 @@ class CirculantOperator:
         # the inverse is applied by division, not stored (memory at large N)
         self.max_inverse = float(1.0 / np.min(np.abs(sym[1:]))) if sym.size > 1 else 0.0
 
+    def _through(self, f: np.ndarray, inverse: bool) -> np.ndarray:
+        """The field of spectrum f after C (or C^+), in place: one spectrum alive at a time
+        (memory at large N)."""
+        if inverse:
+            f[0] = 0.0
+            f[1:] /= self.symbol[1:]
+        else:
+            f *= self.symbol
+        return sfft.irfft(f, self.n, overwrite_x=True)
+
     def apply(self, sigma: np.ndarray) -> np.ndarray:
         """k v = C sigma (mean of the result exactly 0)."""
-        f = sfft.rfft(sigma)
-        f *= self.symbol  # in place: one spectrum alive at a time (memory at large N)
-        return sfft.irfft(f, self.n, overwrite_x=True)
+        return self._through(sfft.rfft(sigma), False)
 
     def pseudo_solve(self, v: np.ndarray) -> np.ndarray:
         """sigma with C sigma = v - mean(v) and mean(sigma) = 0."""
-        f = sfft.rfft(v)
-        f[0] = 0.0
-        f[1:] /= self.symbol[1:]
-        return sfft.irfft(f, self.n, overwrite_x=True)
-
+        return self._through(sfft.rfft(v), True)
 
     def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False):
         """``(C z)[idx]`` (or ``(C^+ z)[idx]``) for ``z`` equal to `values` on `idx` and zero
@@ -63,13 +67,8 @@ class CirculantOperator:
         z[idx] = values
         f = sfft.rfft(z)
         del z
-        if inverse:
-            f[0] = 0.0
-            f[1:] /= self.symbol[1:]
-        else:
-            f *= self.symbol
-        out = sfft.irfft(f, self.n, overwrite_x=True)
-        del f
+        out = self._through(f, inverse)
+        del f  # before the gather
         return out[idx]
 
 

@@ -123,7 +123,6 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     Returns (sigma_full, s, iterations, residual over h k (scaled like the primal), ok).
     """
     op = grid.op
-    n = grid.n
     m = free.size
     base = grid.y.copy()
     base[free] = 0.0
@@ -262,17 +261,18 @@ def _retry_restart(restart, size):
 
 def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
     """Active set, pressure and separation on a finer grid from a solved coarser one."""
+    x, xc = grid.x, prev_grid.x  # made once here (the grids do not keep them)
     if prev["active"].all():
         active = np.ones(grid.n, dtype=np.bool_)
     else:
         active = np.zeros(grid.n, dtype=np.bool_)
-        for p in _patches(prev["sigma"], prev["gap"], prev["active"], prev_grid.x,
-                               prev_grid.h):
-            xr = (grid.x - p.trailing_edge) % 1.0
+        for p in _patches(prev["sigma"], prev["gap"], prev["active"], xc, prev_grid.h):
+            xr = (x - p.trailing_edge) % 1.0
             active |= xr < (p.leading_edge - p.trailing_edge)
-    xp = np.concatenate((prev_grid.x - 1.0, prev_grid.x, prev_grid.x + 1.0))
+    xp = np.concatenate((xc - 1.0, xc, xc + 1.0))
+    del xc
     sp = np.tile(prev["sigma"], 3)
-    sigma = np.interp(grid.x, xp, sp) * active
+    sigma = np.interp(x, xp, sp) * active
     return active, sigma, prev["s"]
 
 
