@@ -21,7 +21,8 @@ It is evaluated by the exact recursion ``E_m = S_m + exp(-h/L) E_(m+1)``
 (h = 1/N, periodic in m) with ``S_m = int_0^h exp(-y/L) c(X_m + y) dy``: O(N) per
 term after the N source integrals.  The source integrals use Gauss rules for
 the weight ``exp(-a t)`` on [0, 1] (a = h/L), so any speed, from ``L << h`` to
-``L >> lambda``, is integrated with the same number of nodes; the two intervals
+``L >> lambda``, is integrated with the same number of nodes (16 near the panel, 9 up to
+32 panels away, 4 beyond, where c is smooth on the scale of a panel); the two intervals
 that contain a kink of ``c`` (a ``y log y`` singularity of its derivative at a
 panel edge) get a graded composite rule.
 
@@ -40,11 +41,16 @@ from scipy.linalg import eigh_tridiagonal
 
 from . import _kernels
 
-#: Gauss points for the source intervals near the panel-edge kinks / far away.
+#: Gauss points for the source intervals near the panel-edge kinks / farther / in the tail.
 _N_NEAR = 16
 _N_FAR = 9
-#: intervals within this many panels of a kink use the near rule
+_N_TAIL = 4
+#: intervals within this many panels of a kink use the near rule, within _FAR_BAND the far
+#: rule.  Beyond, c(X_m + t h) ~ 4 h log|2 sin(pi X)| has t-derivatives of order
+#: 4 h (k - 1)!/m^k, and the n-point Gauss rule errs by about 4 h (4 m)^(-2n)/(2n):
+#: 2e-18 h for n = 4 at m = 32, below the rounding of the sums
 _NEAR_BAND = 3
+_FAR_BAND = 32
 #: the sawtooth ratio sigma_i/sigma_(i+1) the collocation shift of a memory term allows
 #: (see collocation_shift): a sawtooth left by the discretisation decays by this much per panel
 SAWTOOTH_RATIO = 0.3
@@ -165,8 +171,10 @@ def memory_coefficients(nodes: int, length: float) -> np.ndarray:
     a = (1.0 / nodes) / length
     t_near, w_near = exp_weight_rule(a, _N_NEAR)
     t_far, w_far = exp_weight_rule(a, _N_FAR)
+    t_tail, w_tail = exp_weight_rule(a, _N_TAIL)
     src = np.empty(nodes)
-    _kernels.memory_sources(nodes, t_near, w_near, t_far, w_far, _NEAR_BAND - 1, src)
+    _kernels.memory_sources(nodes, t_near, w_near, t_far, w_far, _NEAR_BAND - 1,
+                            t_tail, w_tail, _FAR_BAND, src)
     src[0] = _kink_integral(0, nodes, a)
     src[nodes - 1] = _kink_integral(-1, nodes, a)
     out = np.empty(nodes)

@@ -170,13 +170,16 @@ def panel_values(x: np.ndarray, nodes: int, out: np.ndarray) -> None:
 @njit(cache=True)
 def memory_sources(nodes: int, t_near: np.ndarray, w_near: np.ndarray,
                    t_far: np.ndarray, w_far: np.ndarray, near: int,
+                   t_tail: np.ndarray, w_tail: np.ndarray, far: int,
                    out: np.ndarray) -> None:
     """Source integrals S_m = int_0^1 e^(-a t) c(X_m + t h) dt of the memory recursion.
 
     c is the elastic panel value (:func:`panel_values`), X_m = m h, h = 1/nodes.
     The weight e^(-a t) is built into the Gauss rules (t, w) passed in; the rule
-    "near" (more points) serves |m + 1/2| <= near + 1/2, where the panel-edge
-    singularities of c (at X = +-h/2) lie within a panel of the interval.  The two
+    "near" (most points) serves |m + 1/2| <= near + 1/2, where the panel-edge
+    singularities of c (at X = +-h/2) lie within a panel of the interval, the rule "far"
+    the intervals up to `far` panels away and the rule "tail" (fewest points) the rest,
+    where c is smooth on the scale of the interval.  The two
     intervals that contain such a singularity (m = 0 and m = -1 = nodes - 1) are
     left untouched here: the caller integrates them with a graded rule.
     """
@@ -193,9 +196,12 @@ def memory_sources(nodes: int, t_near: np.ndarray, w_near: np.ndarray,
         if dist <= near:
             tt = t_near
             ww = w_near
-        else:
+        elif dist <= far:
             tt = t_far
             ww = w_far
+        else:
+            tt = t_tail
+            ww = w_tail
         acc = 0.0
         base = mm * h
         for q in range(tt.shape[0]):

@@ -99,13 +99,15 @@ def test_exp_weight_rule_integrates_polynomials_exactly(a):
 
 def test_memory_sources_against_numpy_twin():
     """Source integrals against a dense composite Gauss-Legendre twin in NumPy
-    (40 x 30 points with the exponential in the weights)."""
-    nodes, length = 16, 0.02
+    (40 x 30 points with the exponential in the weights), on every band: near (16 points),
+    far (9) and tail (4, beyond 32 panels)."""
+    nodes, length = 160, 0.002
     a = (1.0 / nodes) / length
     t_n, w_n = exp_weight_rule(a, 16)
     t_f, w_f = exp_weight_rule(a, 9)
+    t_t, w_t = exp_weight_rule(a, 4)
     got = np.zeros(nodes)
-    _kernels.memory_sources(nodes, t_n, w_n, t_f, w_f, 2, got)
+    _kernels.memory_sources(nodes, t_n, w_n, t_f, w_f, 2, t_t, w_t, 32, got)
     g, gw = np.polynomial.legendre.leggauss(30)
     edges = np.linspace(0.0, 1.0, 41)
     tt = (0.5 * (edges[1:] + edges[:-1])[:, None] + 0.5 * np.diff(edges)[:, None] * g).ravel()
