@@ -37,12 +37,14 @@ On the user's grid x_j (spacing 1/M):
 - s/h = mean gap_j when the gap is given, else the mean over the contact points of
   y/h − v_j (in contact gap = v − y + s = 0); Δ/h = 1 − s/h;
 - contact points: σ_j > 1e-9 max σ; patches are the cyclic runs of contact points;
-- each edge: the zero of a least-squares polynomial (cubic when there are enough points) through
-  σ² at the contact points and, when the gap is given, through gap^(2/3) at the free points, taken
-  between ~√M/16 and ~√M/2 points from the edge (σ ∝ d^½ and gap ∝ d^(3/2) near an edge, so both
-  are analytic with a simple zero there; the points right at the edge carry the largest
-  discretisation error); the two zeros are averaged; with too few points, σ² is extrapolated
-  linearly from the last two contact points;
+- each edge: as the BEM finds its own (``bem._assemble.edge_offset``, so that viscosine's BEM
+  fields give back its own scalars): σ² at the contact points and, when the gap is given,
+  gap^(2/3) at the free points are analytic with a simple zero at the edge (σ ∝ d^½ and
+  gap ∝ d^(3/2)); each side is fitted by a cubic plus a discretisation tail b h/d over the points
+  ~√M/16 … ~√M/4 from the edge, and counts only if its zero moves by at most 2e-3 h when the
+  window grows to ~√M/2; the zeros that count are averaged; without any, the zeros of plain
+  cubics over ~√M/16 … ~√M/2 (fewer points on short sides; with too few, σ² extrapolated
+  linearly from the last two contact points);
 - per patch: ka = π·width, ke = 2π(centre − summit), kê = 2π(centroid − summit) with the centroid
   Σσ_j x_j/Σσ_j over the patch and the summit the highest profile point inside it (the crest 0 for
   the sinusoid); with several patches the top-level ka, ke, kê are not defined;
@@ -90,6 +92,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
+
+from bem._assemble import edge_offset as _edge_offset
 
 from . import suite as _suite
 
@@ -351,43 +355,6 @@ def _runs(mask):
     d = np.diff(np.concatenate(([0], rolled, [0])))
     return [((int(f) + start) % n, int(l - f))
             for f, l in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
-
-
-def _zero(pos, vals):
-    """Zero nearest 0 of a least-squares polynomial through (pos, vals) (None if none real)."""
-    k = vals.size
-    deg = 3 if k >= 6 else (2 if k >= 4 else 1)
-    scale = float(np.max(np.abs(pos)))
-    c = np.polynomial.polynomial.polyfit(pos / scale, vals, deg)
-    r = np.polynomial.polynomial.polyroots(c)
-    r = r[np.abs(r.imag) < 1e-9].real * scale
-    return float(r[np.argmin(np.abs(r))]) if r.size else None
-
-
-def _edge_offset(inside_sq, outside_23, h, m_total):
-    """Offset of an edge beyond its last contact point (see the module docstring).
-
-    ``inside_sq[m]``: σ² at the m-th contact point counted inward (offset −m h);
-    ``outside_23[m]``: gap^(2/3) at the m-th free point outward (offset (m + 1) h), or empty.
-    """
-    m1 = max(1, int(round(math.sqrt(m_total) / 16.0)))
-    m2 = max(m1 + 6, int(round(math.sqrt(m_total) / 2.0)))
-    est = []
-    for vals, sign, shift in ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0)):
-        lo, hi = m1, min(m2, vals.size - 1)
-        if hi - lo < 5:
-            lo, hi = 0, min(m2, vals.size - 1)
-        if hi - lo < 3:
-            continue
-        m = np.arange(lo, hi + 1)
-        z = _zero(sign * (m + shift) * h, vals[m])
-        if z is not None and -h <= z <= 2.0 * h:
-            est.append(z)
-    if est:
-        return min(max(sum(est) / len(est), -0.5 * h), 1.5 * h)
-    if inside_sq.size >= 2 and inside_sq[1] > inside_sq[0]:
-        return min(h, h * inside_sq[0] / (inside_sq[1] - inside_sq[0]))
-    return 0.5 * h
 
 
 def scalars_from_fields(fields, shape):

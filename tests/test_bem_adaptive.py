@@ -64,13 +64,16 @@ def test_cap_reached_is_not_an_answer():
 
 
 def test_unresolved_memory_length_enters_the_estimate():
-    """At V/V0 = 1e-3 (memory length 1.6e-4 λ, under 4 panels of N = 4096) the true error of ka is
-    the trailing edge's retreat (1 − 1/ρ)(V/V0)/2 = 3.3e-4, which the differences between grids
-    cannot see; the estimate includes it."""
+    """At V/V0 = 1e-3 (memory length 1.6e-4 λ, under 4 panels of N = 4096) the trailing edge
+    retreats from Westergaard's by (1 − 1/ρ)(V/V0)/2 = 3.3e-4.  The differences between grids
+    cannot tell whether a mesh that coarse sees it, so the estimate includes it.  (It does: the
+    edge fit on the contact side finds it, true error 7.6e-7; a fit of the gap behind the edge,
+    where the memory acts, misses it by 3.1e-4, and the edge fit rejects that side because its
+    zero moves with the fit window.)"""
     ref = analytic.solve(load=0.3, speed=1e-3)
     r = bem.solve(load=0.3, speed=1e-3, nodes=4096)
     shift = (1 - 1 / 3) * 1e-3 / 2
-    assert abs(r.ka - ref.ka) > 0.9 * shift
+    assert abs(r.ka - ref.ka) < 0.01 * shift
     assert r.error_estimate["ka"] >= 1.5 * shift
     assert "memory length" in r.diagnostics["estimate_note"]
 

@@ -27,21 +27,24 @@ TOL_INVERSE = 1e-8
 TOL_SAME = 1e-9
 #: observed orders of convergence to Westergaard, least squares over N = 2^8..2^16
 #: of the RMS error over loads 0.28, 0.3, 0.32 (measured slow/fast: penetration
-#: 1.99/2.10, peak pressure 1.93/1.88, k a 1.68/1.44 -- the sub-panel edge estimate
-#: scatters with the edge's position inside its panel)
+#: 1.99/2.10, peak pressure 1.93/1.88, k a 1.67/1.68: below N = 4096 the edge fit's two
+#: windows disagree and it keeps the plain polynomial fit, whose edge scatters with its position
+#: inside the panel (1.67/1.44 over the whole range before the tail fit); over N = 2^12..2^16
+#: about 1.9/1.7)
 ORDER_PENETRATION = 1.8
 ORDER_PEAK = 1.7
-ORDER_KA = 1.3
+ORDER_KA = 1.6
 #: RMS errors at N = 2^16 (measured slow/fast: penetration 2.7e-10/3.7e-10, peak
-#: 4.3e-10/1.3e-9, k a 9.5e-8/2.0e-7).  The physical deviation of Δ from the elastic
+#: 4.3e-10/1.3e-9, k a 5.7e-9/5.0e-9; 9.5e-8/2.0e-7 with a plain polynomial edge fit).  The physical deviation of Δ from the elastic
 #: limits is O(w^2) / O(w^-2), but that of k a at low speed is first order: k a =
 #: k a_W − (1 − 1/ρ) w/2 (the trailing edge retreats).  At w = 1e-6 the pressure memory
 #: layer w/ρ spans < 0.06 panel even at N = 2^20, so the BEM cannot see the shift and k a
-#: is compared with Westergaard only to 5e-7 (> the shift, 3.3e-7);
-#: tests/test_crosscheck.py checks the shift where the mesh resolves the layer.
+#: is compared with Westergaard only to 5e-7 (> the shift, 3.3e-7) at low speed;
+#: tests/test_crosscheck.py checks the shift where the mesh resolves the layer.  At high
+#: speed the deviation is O(w^-2) and k a is held to 2e-8.
 ERR_PENETRATION_2_16 = 1e-9
 ERR_PEAK_2_16 = 3e-9
-ERR_KA_2_16 = 5e-7
+ERR_KA_2_16 = {1e-6: 5e-7, 1e6: 2e-8}
 
 
 def _fit_order(ns, errs):
@@ -68,7 +71,7 @@ def test_westergaard_limits_and_observed_order(speed, modulus):
     assert _fit_order(ns, err[:, 0]) > ORDER_KA  # sub-panel edges: faster than 1/N
     assert err[-1, 1] < ERR_PENETRATION_2_16
     assert err[-1, 2] < ERR_PEAK_2_16
-    assert err[-1, 0] < ERR_KA_2_16
+    assert err[-1, 0] < ERR_KA_2_16[speed]
 
 
 def test_westergaard_pressure_profile():

@@ -136,6 +136,14 @@ def test_study_on_sequences_with_known_error():
     flat = [exact + 1e-13 * (-1) ** k for k in range(6)]
     st = suite.study(nodes, flat)
     assert st["regime"] == "round-off" and st["richardson"] == flat[-1]
+    # settled within 1e-8 |q| but scattering without order (edge fits): the spread is the estimate
+    settled = [2.2191270, 2.2191270881, 2.2191270875, 2.2191270760, 2.2191270844, 2.2191270864]
+    st = suite.study(nodes, settled)
+    assert st["regime"] == "scatter" and st["richardson"] == settled[-1]
+    assert st["estimate"] == pytest.approx(2.2191270881 - 2.2191270760, rel=1e-6)
+    # the same scatter ten times wider is not settled: nothing certified
+    wide = [settled[-1] + 10.0 * (v - settled[-1]) for v in settled]
+    assert suite.study(nodes, wide)["regime"] == "not converging"
     # a failed mesh among the finest: no study
     assert suite.study(nodes, q[:-1] + [float("nan")])["regime"] == "too few meshes"
 

@@ -69,7 +69,8 @@ def test_verify_fails_on_a_perturbed_copy_naming_the_pressure_linf_norm(tmp_path
 def test_orders_on_viscosine_own_bem_fields(tmp_path, capsys):
     """N = 1024 … 16384 on the report's convergence point (p̃∞ = 0.3, V/V0 = 1): the orders of
     the differences are the BEM's own (Δ/h and ka are derived from the fields exactly as the BEM
-    derives them); measured μ 1.77, Δ/h 1.67, ka 1.24, σ L2 1.01."""
+    derives them); measured μ 1.77, Δ/h 1.67, ka 1.89 (1.24 with a plain polynomial edge fit),
+    σ L2 1.01."""
     rc, out, err = _run(capsys, "--case", CASE, "--callable", "comparisons.verify:viscosine_bem",
                         "--nodes", "1024", "2048", "4096", "8192", "16384",
                         "--tol", "pressure_Linf=1e-2", "--out", str(tmp_path), "--no-figures")
@@ -78,7 +79,7 @@ def test_orders_on_viscosine_own_bem_fields(tmp_path, capsys):
     order = {k: q["order_vs_reference"] for k, q in conv["quantities"].items()}
     assert order["mu"] == pytest.approx(1.77, abs=0.05)
     assert order["penetration"] == pytest.approx(1.67, abs=0.05)
-    assert order["ka"] == pytest.approx(1.24, abs=0.05)
+    assert order["ka"] == pytest.approx(1.89, abs=0.05)
     assert order["pressure_L2"] == pytest.approx(1.0, abs=0.05)
     assert "orders vs reference: mu 1.77" in out
     # the fields give the BEM's own Δ/h and ka on every mesh
@@ -93,7 +94,8 @@ def test_orders_on_viscosine_own_bem_fields(tmp_path, capsys):
 @pytest.mark.slow
 def test_orders_of_the_worst_difference_over_the_crosscheck_grid():
     """The README's table (worst over the grid of operating points) measured through verify on
-    viscosine's BEM fields at N = 1024 … 16384: measured Δ/h 1.93, ka 1.64, σ L2 0.97 (the
+    viscosine's BEM fields at N = 1024 … 16384: measured Δ/h 1.93, ka 2.16 (1.64 with a plain
+    polynomial edge fit), σ L2 0.97 (the
     README, N up to 65536 and the BEM's own μ: 1.78, 1.68, ≈ 1; μ 1.93); μ derived from the
     fields 2.79 (the light-load point dominates its worst difference at N = 1024)."""
     from comparisons import crosscheck
@@ -109,7 +111,7 @@ def test_orders_of_the_worst_difference_over_the_crosscheck_grid():
             worst[k] = np.maximum(worst.get(k, 0.0), np.array(q["errors"], float))
     order = {k: verify.fit_order(nodes, v) for k, v in worst.items()}
     assert order["penetration"] == pytest.approx(1.93, abs=0.1)
-    assert order["ka"] == pytest.approx(1.64, abs=0.1)
+    assert order["ka"] == pytest.approx(2.16, abs=0.1)
     assert order["pressure_L2"] == pytest.approx(0.97, abs=0.1)
     assert order["mu"] > 1.7
 
