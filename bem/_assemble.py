@@ -70,8 +70,7 @@ def edge_offset(inside_sq, outside_23, h, nodes):
     its panel), which a plain polynomial fit mistakes for an edge shift that oscillates
     with that position.  So each side is fitted over panels at distances
     sqrt(N)/16 .. sqrt(N)/4 (growing with N, shrinking in wavelengths) by a cubic plus
-    b h/d, d measured from the edge found so far (two passes, started from
-    `edge_offset_plain`).  A side counts only if the same fit over sqrt(N)/16 .. sqrt(N)/2
+    b h/d, d measured from the edge found so far (iterated from `edge_offset_plain`).  A side counts only if the same fit over sqrt(N)/16 .. sqrt(N)/2
     finds its zero within EDGE_WINDOW_AGREEMENT h of it: where a relaxation layer or the
     recovery behind a trailing edge puts another scale inside the window, the model does not
     hold and the zero moves with the window (measured: 0.04 h for the gap behind the
@@ -96,6 +95,9 @@ def edge_offset(inside_sq, outside_23, h, nodes):
 
 #: degree of the polynomial part of the edge fit with a discretisation tail
 TAIL_FIT_DEGREE = 3
+#: passes of the fixed point in d (the tail's distances from the zero found so far), stopped
+#: once the zero moves by at most 1e-10 h (three or four from a start 0.6 h off)
+TAIL_FIT_PASSES = 8
 #: a side's zero may move by this many panels between the fit windows N^(1/2)/16..N^(1/2)/4 and
 #: ..N^(1/2)/2 (where the model holds they agree to ~1e-4 h; where another scale sits in the
 #: window they differ by 1e-2 h or more)
@@ -113,7 +115,8 @@ def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
     pos = sign * (m + shift) * h
     scale = hi * h
     root = start
-    for _ in range(2):
+    for _ in range(TAIL_FIT_PASSES):
+        prev = root
         # |d| >= h/2 for every panel fitted (m1 >= 1, root in [-h/2, 3h/2])
         dist = np.abs(pos - root)
         cols = np.vstack([(pos / scale) ** k for k in range(TAIL_FIT_DEGREE + 1)] + [h / dist]).T
@@ -125,6 +128,8 @@ def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
         root = float(roots[np.argmin(np.abs(roots - root))])
         if not -0.5 * h <= root <= 1.5 * h:
             return None
+        if abs(root - prev) <= 1e-10 * h:
+            break
     return root
 
 
