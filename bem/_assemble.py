@@ -107,30 +107,56 @@ EDGE_WINDOW_AGREEMENT = 2e-3
 def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
     """Zero near `start` of the least-squares cubic + b h/|d| through vals[m] at offsets
     sign (m + shift) h, m = m1..m2 (d = offset - zero); None where too few panels are
-    there or the zero leaves [-h/2, 3h/2] (the range of the edge offsets)."""
+    there or the zero leaves [-h/2, 3h/2] (the range of the edge offsets).
+
+    Only the tail column changes from pass to pass: the cubic's columns are factored once
+    (QR), the tail column is projected off them for b, and the cubic's zero nearest the last
+    one is polished by Newton's method."""
     hi = min(m2, vals.size - 1)
     if hi - m1 < TAIL_FIT_DEGREE + 4:
         return None
     m = np.arange(m1, hi + 1)
     pos = sign * (m + shift) * h
     scale = hi * h
+    q, r = np.linalg.qr(np.vander(pos / scale, TAIL_FIT_DEGREE + 1, increasing=True))
+    y = vals[m]
+    qy = q.T @ y
     root = start
     for _ in range(TAIL_FIT_PASSES):
         prev = root
         # |d| >= h/2 for every panel fitted (m1 >= 1, root in [-h/2, 3h/2])
-        dist = np.abs(pos - root)
-        cols = np.vstack([(pos / scale) ** k for k in range(TAIL_FIT_DEGREE + 1)] + [h / dist]).T
-        c = np.linalg.lstsq(cols, vals[m], rcond=None)[0]
-        roots = np.polynomial.polynomial.polyroots(c[:TAIL_FIT_DEGREE + 1])
-        roots = roots[np.abs(roots.imag) < 1e-9].real * scale
-        if roots.size == 0:
+        tail = h / np.abs(pos - root)
+        tq = q.T @ tail
+        perp = tail - q @ tq
+        b = float(perp @ y) / float(perp @ perp)
+        c = np.linalg.solve(r, qy - b * tq)
+        z = _cubic_zero_near(c, root / scale)
+        if z is None:
             return None
-        root = float(roots[np.argmin(np.abs(roots - root))])
+        root = z * scale
         if not -0.5 * h <= root <= 1.5 * h:
             return None
         if abs(root - prev) <= 1e-10 * h:
             break
     return root
+
+
+def _cubic_zero_near(c, x):
+    """Real zero of sum c_k x^k nearest x: Newton's method from x (the zeros a fit gives near
+    an edge are simple), else the companion matrix's."""
+    x0 = x
+    for _ in range(30):
+        f = ((c[3] * x + c[2]) * x + c[1]) * x + c[0]
+        df = (3.0 * c[3] * x + 2.0 * c[2]) * x + c[1]
+        if df == 0.0:
+            break
+        step = f / df
+        x -= step
+        if abs(step) <= 1e-15 * max(1.0, abs(x)):
+            return float(x)
+    roots = np.polynomial.polynomial.polyroots(c)
+    roots = roots[np.abs(roots.imag) < 1e-9].real
+    return float(roots[np.argmin(np.abs(roots - x0))]) if roots.size else None
 
 
 def edge_offset_plain(inside_sq, outside_23, h, nodes):

@@ -266,7 +266,10 @@ def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
         active = np.ones(grid.n, dtype=np.bool_)
     else:
         active = np.zeros(grid.n, dtype=np.bool_)
-        for p in _patches(prev["sigma"], prev["gap"], prev["active"], xc, prev_grid.h):
+        patches = prev.get("patches")  # measured by _level_scalars when the grid converged
+        if patches is None:
+            patches = _patches(prev["sigma"], prev["gap"], prev["active"], xc, prev_grid.h)
+        for p in patches:
             xr = (x - p.trailing_edge) % 1.0
             active |= xr < (p.leading_edge - p.trailing_edge)
     xp = np.concatenate((xc - 1.0, xc, xc + 1.0))
@@ -586,6 +589,7 @@ def _level_scalars(res, grid, profile, material, speed, amp):
                    min_panels=grid.n)
         return out
     patches = _patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y)
+    res["patches"] = patches  # the next grid's start needs their edges too
     frac = float(sum(p.width for p in patches))
     out.update(contact_fraction=frac, npatch=len(patches),
                min_panels=min(p.panels for p in patches))
