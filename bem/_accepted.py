@@ -33,7 +33,7 @@ TERM_MIN = 1e-12
 RTOL_MIN, RTOL_MAX = 1e-10, 1e-2
 NODES_MIN = 8
 #: bytes per panel of a solve (operator, its FFTs, the Krylov basis and the fields): the
-#: tracemalloc peak at 2^20 is 81-114 for E_inf/E0 = 3 and 145 for a stiff material mostly in
+#: tracemalloc peak at 2^20 is 81-114 for E_inf/E0 = 3 and 136 for a stiff material mostly in
 #: contact (python -m comparisons bench --bem)
 BYTES_PER_PANEL = 150
 
