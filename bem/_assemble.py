@@ -70,23 +70,29 @@ def edge_offset(inside_sq, outside_23, h, nodes):
     its panel), which a plain polynomial fit mistakes for an edge shift that oscillates
     with that position.  So each side is fitted over panels at distances
     sqrt(N)/16 .. sqrt(N)/4 (growing with N, shrinking in wavelengths) by a cubic plus
-    b h/d, d measured from the edge found so far (iterated from `edge_offset_plain`).  A side counts only if the same fit over sqrt(N)/16 .. sqrt(N)/2
-    finds its zero within EDGE_WINDOW_AGREEMENT h of it: where a relaxation layer or the
-    recovery behind a trailing edge puts another scale inside the window, the model does not
-    hold and the zero moves with the window (measured: 0.04 h for the gap behind the
-    trailing edge of the standard linear solid at V/V0 = 0.1, N = 4096; 1e-4 h where the model
-    holds).  The zeros of the sides that count are averaged; with none, the plain fit is the
-    answer.  On Westergaard's solution the edge then converges at second order (RMS error of
-    ka 5e-9 at N = 2^16), where the plain fit's error scatters by a factor of ten from one N
-    to the next (1e-7 to 2e-7).
+    b h/d, d measured from the edge found so far (iterated from `edge_offset_plain`).  A side
+    counts only if the same fit over sqrt(N)/16 .. sqrt(N)/2 finds its zero within
+    EDGE_WINDOW_AGREEMENT h of it: where a relaxation layer or the recovery behind a trailing
+    edge puts another scale inside the window, the model does not hold and the zero moves with
+    the window (measured: 0.04 h for the gap behind the trailing edge of the standard linear
+    solid at V/V0 = 0.1, N = 4096; 1e-4 h where the model holds).  A patch or gap cut short by
+    the next edge is fitted over the first half of its panels and checked against all of them
+    (never on two windows that hold the same panels); too short for that, it does not count.
+    The zeros of the sides that count are averaged; with none, the plain fit is the answer.
+    On Westergaard's solution the error of ka then falls smoothly (RMS 5e-9 at N = 2^16,
+    observed order 1.7-1.8 over N = 2^12 .. 2^16), where the plain fit's error scatters by a
+    factor of ten from one N to the next (1e-7 to 2e-7 at 2^16).
     """
     base = edge_offset_plain(inside_sq, outside_23, h, nodes)
     m1 = max(1, int(round(math.sqrt(nodes) / 16.0)))
     m2 = max(m1 + TAIL_FIT_DEGREE + 4, int(round(math.sqrt(nodes) / 4.0)))
     est = []
     for vals, sign, shift in ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0)):
-        root = _tail_fit_root(vals, sign, shift, m1, m2, base, h)
-        wide = _tail_fit_root(vals, sign, shift, m1, 2 * m2, base, h)
+        # a side cut short by the next edge is checked on the windows it holds (the wide one
+        # twice the narrow one), never on two windows holding the same panels
+        mm = min(m2, (vals.size - 1) // 2)
+        root = _tail_fit_root(vals, sign, shift, m1, mm, base, h)
+        wide = _tail_fit_root(vals, sign, shift, m1, 2 * mm, base, h)
         if root is not None and wide is not None and \
                 abs(root - wide) <= EDGE_WINDOW_AGREEMENT * h:
             est.append(root)
@@ -96,8 +102,10 @@ def edge_offset(inside_sq, outside_23, h, nodes):
 #: degree of the polynomial part of the edge fit with a discretisation tail
 TAIL_FIT_DEGREE = 3
 #: passes of the fixed point in d (the tail's distances from the zero found so far), stopped
-#: once the zero moves by at most 1e-10 h (three or four from a start 0.6 h off)
-TAIL_FIT_PASSES = 8
+#: once the zero moves by at most 1e-10 h.  It contracts by 0.1-0.3 per pass (measured on the
+#: standard linear solid at V/V0 = 0.1, N = 2^14: 3 to 20 passes from a start up to 1 h off);
+#: 40 allow a contraction up to 0.55, and a side that has not settled by then does not count
+TAIL_FIT_PASSES = 40
 #: a side's zero may move by this many panels between the fit windows N^(1/2)/16..N^(1/2)/4 and
 #: ..N^(1/2)/2 (where the model holds they agree to ~1e-4 h; where another scale sits in the
 #: window they differ by 1e-2 h or more)
@@ -107,7 +115,8 @@ EDGE_WINDOW_AGREEMENT = 2e-3
 def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
     """Zero near `start` of the least-squares cubic + b h/|d| through vals[m] at offsets
     sign (m + shift) h, m = m1..m2 (d = offset - zero); None where too few panels are
-    there or the zero leaves [-h/2, 3h/2] (the range of the edge offsets).
+    there, the zero leaves [-h/2, 3h/2] (the range of the edge offsets) or the fixed point
+    has not settled after TAIL_FIT_PASSES passes.
 
     Only the tail column changes from pass to pass: the cubic's columns are factored once
     (QR), the tail column is projected off them for b, and the cubic's zero nearest the last
@@ -137,8 +146,8 @@ def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
         if not -0.5 * h <= root <= 1.5 * h:
             return None
         if abs(root - prev) <= 1e-10 * h:
-            break
-    return root
+            return root
+    return None  # the fixed point did not settle: no zero to trust
 
 
 def _cubic_zero_near(c, x):

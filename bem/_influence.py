@@ -48,7 +48,7 @@ _N_TAIL = 4
 #: intervals within this many panels of a kink use the near rule, within _FAR_BAND the far
 #: rule.  Beyond, c(X_m + t h) ~ 4 h log|2 sin(pi X)| has t-derivatives of order
 #: 4 h (k - 1)!/m^k, and the n-point Gauss rule errs by about 4 h (4 m)^(-2n)/(2n):
-#: 2e-18 h for n = 4 at m = 32, below the rounding of the sums
+#: 7e-18 h for n = 4 at m = 32, below the rounding of the sums
 _NEAR_BAND = 3
 _FAR_BAND = 32
 #: the sawtooth ratio sigma_i/sigma_(i+1) the collocation shift of a memory term allows

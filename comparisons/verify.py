@@ -42,7 +42,9 @@ On the user's grid x_j (spacing 1/M):
   gap^(2/3) at the free points are analytic with a simple zero at the edge (σ ∝ d^½ and
   gap ∝ d^(3/2)); each side is fitted by a cubic plus a discretisation tail b h/d over the points
   ~√M/16 … ~√M/4 from the edge, and counts only if its zero moves by at most 2e-3 h when the
-  window grows to ~√M/2; the zeros that count are averaged; without any, the zeros of plain
+  window grows to ~√M/2 (a side cut short by the next edge: over the first half of its points,
+  checked against all of them; too short for that, it does not count); the zeros that count
+  are averaged; without any, the zeros of plain
   cubics over ~√M/16 … ~√M/2 (fewer points on short sides; with too few, σ² extrapolated
   linearly from the last two contact points);
 - per patch: ka = π·width, ke = 2π(centre − summit), kê = 2π(centroid − summit) with the centroid

@@ -27,16 +27,16 @@ TOL_INVERSE = 1e-8
 TOL_SAME = 1e-9
 #: observed orders of convergence to Westergaard, least squares over N = 2^8..2^16
 #: of the RMS error over loads 0.28, 0.3, 0.32 (measured slow/fast: penetration
-#: 1.99/2.10, peak pressure 1.93/1.88, k a 1.67/1.68: below N = 4096 the edge fit's two
-#: windows disagree and it keeps the plain polynomial fit, whose edge scatters with its position
-#: inside the panel (1.67/1.44 over the whole range before the tail fit); over N = 2^12..2^16
-#: about 1.9/1.7)
+#: 1.99/2.10, peak pressure 1.93/1.88, k a 1.67/1.68, 1.79/1.74 over N = 2^12..2^16; the edge
+#: fit with its discretisation tail is below the plain polynomial fit at every N, e.g. 6.8e-5
+#: against 9.7e-4 at N = 256 and 5.7e-9 against 1.0e-7 at 2^16 (slow), whose edge scatters
+#: with its position inside the panel: 1.67/1.44 over the whole range)
 ORDER_PENETRATION = 1.8
 ORDER_PEAK = 1.7
 ORDER_KA = 1.6
 #: RMS errors at N = 2^16 (measured slow/fast: penetration 2.7e-10/3.7e-10, peak
-#: 4.3e-10/1.3e-9, k a 5.7e-9/5.0e-9; 9.5e-8/2.0e-7 with a plain polynomial edge fit).  The physical deviation of Δ from the elastic
-#: limits is O(w^2) / O(w^-2), but that of k a at low speed is first order: k a =
+#: 4.3e-10/1.3e-9, k a 5.7e-9/5.0e-9; 1.0e-7/2.0e-7 with a plain polynomial edge fit).
+#: The physical deviation of Δ from the elastic limits is O(w^2) / O(w^-2), but that of k a at low speed is first order: k a =
 #: k a_W − (1 − 1/ρ) w/2 (the trailing edge retreats).  At w = 1e-6 the pressure memory
 #: layer w/ρ spans < 0.06 panel even at N = 2^20, so the BEM cannot see the shift and k a
 #: is compared with Westergaard only to 5e-7 (> the shift, 3.3e-7) at low speed;
