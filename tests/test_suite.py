@@ -144,6 +144,11 @@ def test_study_on_sequences_with_known_error():
     # the same scatter ten times wider is not settled: nothing certified
     wide = [settled[-1] + 10.0 * (v - settled[-1]) for v in settled]
     assert suite.study(nodes, wide)["regime"] == "not converging"
+    # a one-way drift within 1e-8 |q| with differences that do not shrink is not scatter
+    drift = [2.2191270 + 3e-9 * k for k in range(6)]
+    st = suite.study(nodes, drift)
+    assert max(drift) - min(drift) <= suite.SCATTER_FLOOR * drift[-1]
+    assert st["regime"] == "not converging" and st["estimate"] == float("inf")
     # a failed mesh among the finest: no study
     assert suite.study(nodes, q[:-1] + [float("nan")])["regime"] == "too few meshes"
 
