@@ -12,7 +12,9 @@ import math
 import numpy as np
 
 from . import _kernels
+from ._influence import window_memory_coefficients
 from ._inputs import Prony, Sinusoid, _direct
+from ._operator import WindowOperator
 from ._result import BemResult, Patch
 
 _TWO_PI = 2.0 * math.pi
@@ -257,12 +259,14 @@ def _summit(profile, y, ids, xs, trail, lead):
     return t if height(t) >= height(start) else start
 
 
-def _patches(sigma, gap, active, x, h, profile=None, y=None):
+def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False):
     """Contact patches of a partial contact (`Patch` with sub-panel edges).
 
     With ``profile`` (and its panel heights ``y``) each patch gets its summit and ka, ke, kê
     are measured from it; without (the solver's prolongation only needs the edges) the summit
-    is the crest X = 0.
+    is the crest X = 0.  ``window``: the panels are a contact window, not a period (the free
+    panels of each side end at the window's ends; a patch that reaches one is the caller's
+    error).
     """
     out = []
     n = sigma.size
@@ -274,6 +278,11 @@ def _patches(sigma, gap, active, x, h, profile=None, y=None):
         free_before = (first - (prv_first + prv_len)) % n
         if len(runs) == 1:
             free_after = free_before = n - length
+        if window:
+            if i == len(runs) - 1:
+                free_after = n - first - length
+            if i == 0:
+                free_before = first
         trail, lead = _patch_edges(sigma, gap, first, length, free_after, free_before, x, h)
         shift = -math.floor(0.5 * (trail + lead) + 0.5)  # centre into [-1/2, 1/2)
         trail += shift
@@ -285,7 +294,7 @@ def _patches(sigma, gap, active, x, h, profile=None, y=None):
         elif xs.mean() - 0.5 * (trail + lead) < -0.5:
             xs += 1.0
         w = sigma[ids]
-        load = float(w.sum()) / n
+        load = float(w.sum()) / round(1.0 / h)  # mean over the period (h = 1/N)
         centroid = float(np.dot(w, xs) / w.sum()) if w.sum() > 0 else 0.5 * (trail + lead)
         summit = 0.0 if profile is None else _summit(profile, y, ids, xs, trail, lead)
         width = lead - trail
@@ -347,6 +356,71 @@ def _friction(sigma, y, material: Prony, speed: float):
     diss = float(np.sum(weight * 4.0 * jim * np.abs(sh) ** 2))
     direct = float(np.sum(weight * 2.0 * modes * np.imag(np.conj(sh) * yh)))
     return diss, direct
+
+
+def _window_friction(sigma, grid, material: Prony, speed: float):
+    """tau_f (1 - nu^2)/E_ref on a contact window, in the dissipation form.
+
+    tau_f = -(1/2 pi) int sigma d(k v)/dX dX (eq. 3.1).  The elastic part of v adds nothing
+    (its kernel is even), and a Prony term's part ``v_i = J_i M_i sigma`` has
+    ``dM_i/dX = (M_i - c)/L_i`` (differentiate ``M_i(X) = (1/L_i) int_0^inf exp(-y/L_i)
+    c(X + y) dy``; c the elastic panel influence, L_i the memory length in wavelengths), so
+    with the midpoint rule over the panels::
+
+        tau_f = (h/2 pi) sum_i (J_i/L_i) sigma^T (C - M_i) sigma  >= 0,
+
+    a sum of positive dissipations, where the direct form -(1/2 pi) int sigma d(k y)/dX
+    cancels between the two halves of the contact (at V/V0 = 100, p~ = 1e-8: mu is 3e-5 of
+    each half).  At rest (``L_i = 0``) a term dissipates nothing.  A memory under 64 panels,
+    which the midpoint rule does not resolve (and where C - M_i cancels), makes the whole the
+    direct form: exact for piecewise-constant pressure, ``k y(X + h/2) - k y(X - h/2) = -2 h k
+    sin(pi h) sin(2 pi X)``.
+    """
+    n = grid.n
+    h = grid.h
+    offsets = np.arange(-n, n + 1) / grid.nodes
+    elastic = np.empty(offsets.size)
+    _kernels.panel_values(offsets, grid.nodes, elastic)
+    c_sigma = _dot_window(elastic, sigma)
+    total = 0.0
+    for j_i, tau_i in material.terms:
+        length = speed * tau_i / _TWO_PI
+        if j_i == 0.0 or length == 0.0:  # no memory (at rest: relaxed), no dissipation
+            continue
+        if length < 64.0 * h:  # no memory to speak of: the direct form
+            return grid.amp * math.sin(math.pi * h) / math.pi * \
+                float(np.dot(sigma, np.sin(_TWO_PI * grid.x)))
+        m_i = window_memory_coefficients(grid.nodes, length, -n, 2 * n + 1)
+        total += (j_i / length) * (c_sigma - _dot_window(m_i, sigma))
+    return h / _TWO_PI * total
+
+
+def _dot_window(column, sigma):
+    """sigma^T T sigma for the window Toeplitz matrix of ``column`` (offsets -n .. n)."""
+    return float(np.dot(sigma, WindowOperator(column).apply(sigma)))
+
+
+def _window_fields(sigma, gap, active, s, grid):
+    """Fields over the period of a contact-window solve (over h; pressure as solved): the
+    window's panels, and outside it the panels of its coarse periodic grid, whose displacement
+    is that of the window's pressure gathered onto them (load kept).  The coarse panels
+    within two of the window are left out (the gathering errs there)."""
+    cg = grid.coarse
+    nc = cg.n
+    x = grid.x
+    j = np.rint((x + 0.5) * nc).astype(np.int64) % nc
+    sc = np.bincount(j, weights=sigma, minlength=nc) * (nc / grid.nodes)
+    uc = cg.op.apply(sc)
+    gc = uc - cg.y + (grid.s_offset + s)
+    xc = cg.x
+    lo, hi = x[0] - 2.0 * cg.h, x[-1] + 2.0 * cg.h
+    left, right = xc < lo, xc > hi
+    disp = grid.op.apply(sigma)
+    xs = np.concatenate((xc[left], x, xc[right]))
+    p = np.concatenate((np.zeros(int(left.sum())), sigma, np.zeros(int(right.sum()))))
+    u = np.concatenate((uc[left], disp, uc[right])) / grid.amp
+    g = np.concatenate((gc[left], np.where(active, 0.0, gap), gc[right])) / grid.amp
+    return xs, p, u, g
 
 
 def _problems(sc, fields, load, asked_load):
@@ -421,13 +495,18 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     active = res["active"]
     s = float(res["s"])
     gap = res["gap"]
-    n = grid.n
+    n = grid.nodes
     out = np.empty(4)
     _kernels.contact_residuals(active, sigma, gap, out)
-    mean_p = float(sigma.mean())
+    mean_p = float(sigma.sum()) / n if grid.window else float(sigma.mean())
     target = load if load is not None else mean_p
     smax = float(sigma.max()) if sigma.size else 0.0
-    tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
+    if grid.window:  # no spectrum of a window: the dissipation and the direct forms in real space
+        tau_f = _window_friction(sigma, grid, material, speed)
+        tau_direct = grid.amp * math.sin(math.pi * grid.h) / math.pi * \
+            float(np.dot(sigma, np.sin(_TWO_PI * grid.x)))
+    else:
+        tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
     residuals = {
         "complementarity": float(out[0]) / amp,
         "contact_gap": float(out[1]) / amp,
@@ -448,7 +527,8 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         frac = 1.0
         ka, ke, ke_hat = math.pi, None, patches[0].ke_hat
     else:
-        patches = tuple(_patches(sigma, gap, active, grid.x, grid.h, profile, grid.y))
+        patches = tuple(_patches(sigma, gap, active, grid.x, grid.h, profile, grid.y,
+                                 grid.window))
         frac = float(sum(p.width for p in patches))
         if len(patches) == 1:
             ka, ke, ke_hat = patches[0].ka, patches[0].ke, patches[0].ke_hat
@@ -458,16 +538,20 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         if narrow < FEW_PANELS:
             warnings.append(f"a contact patch spans {narrow} panel(s): its edges, ka and ke "
                             "carry an error of the order of a panel (refine N)")
-    penetration = (amp - s) / amp
-    separation = s / amp
+    penetration = (amp - grid.s_offset - s) / amp
+    separation = (grid.s_offset + s) / amp
     if full and abs(separation) <= ROUNDOFF:
         # in full contact s is the mean of the zero-mean samples of the profile, zero but for
         # rounding: Δ = h exactly (conventions)
         penetration, separation = 1.0, 0.0
     elif 1.0 < penetration <= 1.0 + ROUNDOFF:
         penetration, separation = 1.0, 0.0  # s within rounding of 0 just below the transition
-    disp = grid.op.apply(sigma) / amp
-    gap_out = np.where(active, 0.0, gap) / amp
+    if grid.window:
+        x_out, p_out, disp, gap_out = _window_fields(sigma, gap, active, s, grid)
+    else:
+        x_out, p_out = grid.x, sigma
+        disp = grid.op.apply(sigma) / amp
+        gap_out = np.where(active, 0.0, gap) / amp
     mu = tau_f / mean_p if mean_p > 0 else math.nan
     status = int(res["status"])
     success = status == 0
@@ -482,7 +566,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         sc = {"contact_fraction": frac, "ka": ka, "ke": ke, "ke_hat": ke_hat,
               "penetration": penetration, "separation": separation, "tau_f": tau_f, "mu": mu,
               "load": mean_p}
-        bad = _problems(sc, {"pressure": sigma, "displacement": disp, "gap": gap_out}, mean_p,
+        bad = _problems(sc, {"pressure": p_out, "displacement": disp, "gap": gap_out}, mean_p,
                         load)
         if bad:
             success, status = False, STATUS_INVALID
@@ -499,7 +583,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         material=material, profile=profile, load=mean_p, full_contact=full,
         contact_fraction=frac, ka=ka, ke=ke, ke_hat=ke_hat,
         penetration=penetration, tau_f=tau_f, mu=mu,
-        separation=separation, x_over_lambda=grid.x, pressure=sigma, displacement=disp,
+        separation=separation, x_over_lambda=x_out, pressure=p_out, displacement=disp,
         gap=gap_out, patches=patches, levels=tuple(history), memory_layer_panels=layer,
         control=control, asked=asked, ratio=ratio,
         hk=profile.hk if isinstance(profile, Sinusoid) else None,

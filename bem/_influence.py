@@ -183,6 +183,78 @@ def memory_coefficients(nodes: int, length: float) -> np.ndarray:
     return out
 
 
+def window_memory_coefficients(nodes: int, length: float, first: int,
+                               count: int) -> np.ndarray:
+    """:func:`memory_coefficients` at the signed offsets ``first .. first + count - 1`` only,
+    for a grid too fine to be made (a contact window of ``count`` panels of a grid of
+    ``nodes`` panels per period; ``nodes`` up to 2^52).
+
+    The recursion ``E_m = S_m + q E_(m+1)`` (``q = exp(-h/L)``) runs down from ``D + 1``,
+    ``D = max(|first|, |last|) + 1``, whose value is the whole integral beyond:
+    ``E_(D+1) = P/(1 - q^N)`` over one period ``P``, split into the source intervals of the
+    load's periodic image (signed offsets ``-(D+1) .. D``, the ones near the window, weight
+    ``q^(N + m - D - 1)``) and the smooth rest, ``(1/h) int_(X0)^(1-X0) exp(-(X - X0)/L) c(X)
+    dX`` with ``X0 = (D+1) h``, by Gauss-Legendre on intervals graded geometrically toward
+    both ends (c ~ 4 h log|2 sin pi X| there) and no wider than 4 L where the weight decays.
+    """
+    last = first + count - 1
+    d = max(abs(first), abs(last)) + 1
+    if 2 * d + 4 > nodes:
+        raise ValueError(f"count={count!r} is not allowed: a window well inside one period "
+                         f"(offsets {first}..{last} on nodes={nodes})")
+    h = 1.0 / nodes
+    a = h / length
+    rules = []
+    for npts in (_N_NEAR, _N_FAR, _N_TAIL):
+        rules += list(exp_weight_rule(a, npts))
+    lo = -(d + 1)
+    src = np.empty(2 * d + 2)  # signed offsets lo .. d
+    _kernels.memory_sources_span(nodes, lo, rules[0], rules[1], rules[2], rules[3],
+                                 _NEAR_BAND - 1, rules[4], rules[5], _FAR_BAND, src)
+    src[-lo] = _kink_integral(0, nodes, a)
+    src[-lo - 1] = _kink_integral(-1, nodes, a)
+    offs = np.arange(lo, d + 1, dtype=float)
+    image = float(np.dot(np.exp(-a * (nodes + offs - d - 1)), src))
+    x0 = (d + 1) * h
+    smooth = _smooth_memory_integral(x0, 1.0 - x0, length, nodes) / h
+    e = (smooth + image) / -math.expm1(-a * nodes)  # E_(d+1)
+    r = math.exp(-a)
+    out = np.empty(count)
+    for m in range(d, first - 1, -1):
+        e = src[m - lo] + r * e
+        if m <= last:
+            out[m - first] = e
+    return a * out
+
+
+def _smooth_memory_integral(x0: float, x1: float, length: float, nodes: int) -> float:
+    """``int_(x0)^(x1) exp(-(X - x0)/L) c(X) dX`` for c of a grid of `nodes` panels, where
+    [x0, x1] keeps away from the panel at X = 0 and its image at 1 (c smooth, logarithmic
+    toward both ends): 20-point Gauss-Legendre on intervals doubling away from each end, cut
+    to at most 4 L where the weight decays, and ending where it has fallen below 1e-20."""
+    mid = 0.5 * (x0 + x1)
+    pts = {x0, x1, mid}
+    w = x0
+    while x0 + w < mid:
+        pts.update((x0 + w, x1 - w))
+        w *= 2.0
+    end = min(x1, x0 + 46.0 * length)  # exp(-46) = 1e-20
+    pts = sorted(p for p in pts if p < end) + [end]
+    edges = [pts[0]]
+    for p in pts[1:]:
+        pieces = max(1, int(math.ceil((p - edges[-1]) / (4.0 * length))))
+        edges.extend(edges[-1] + (p - edges[-1]) * np.arange(1, pieces + 1) / pieces)
+    edges = np.asarray(edges)
+    g, gw = np.polynomial.legendre.leggauss(20)
+    half = 0.5 * np.diff(edges)
+    centre = 0.5 * (edges[1:] + edges[:-1])
+    x = (centre[:, None] + half[:, None] * g[None, :]).ravel()
+    wts = (half[:, None] * gw[None, :]).ravel() * np.exp(-(x - x0) / length)
+    vals = np.empty_like(x)
+    _kernels.panel_values(x, nodes, vals)
+    return float(np.dot(wts, vals))
+
+
 def collocation_shift(h: float, length: float, j_local: float, j_i: float) -> float:
     """Upstream-fitted collocation shift ``delta`` of one memory term, in wavelengths.
 
@@ -213,7 +285,8 @@ def collocation_shift(h: float, length: float, j_local: float, j_i: float) -> fl
     return max(-length * math.log(e), 0.0)
 
 
-def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.ndarray:
+def shifted_memory_coefficients(nodes: int, length: float, delta: float,
+                                span: tuple[int, int] | None = None) -> np.ndarray:
     """Memory coefficients collocated ``delta`` downstream of the panel centres.
 
     ``(1/L) int_0^inf exp(-y/L) c(X_m - delta + y) dy = exp(-delta/L) M_m + (delta/L)
@@ -221,22 +294,28 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.n
     :func:`memory_coefficients`.  With the shifts of :func:`collocation_shift` (``delta <=
     0.27 h``, ``delta/L <= 0.17``) the kinks of c at ``+-h/2`` stay at least 0.23 h from every
     interval of the second integral, whose length is at most 0.27 h: 16-point Gauss-Legendre
-    with the weight folded in is exact to rounding.
+    with the weight folded in is exact to rounding.  ``span = (first, count)``: the signed
+    offsets of a window only (:func:`window_memory_coefficients`).
     """
     if not 0.0 <= delta <= 0.3 / nodes:
         raise ValueError(f"delta={delta!r} is not allowed: a shift in [0, 0.3 h] "
                          "(collocation_shift gives at most 0.27 h)")
-    base = memory_coefficients(nodes, length)
+    if span is None:
+        base = memory_coefficients(nodes, length)
+        m = np.arange(nodes)
+        offsets = np.where(m <= nodes // 2, m, m - nodes)
+    else:
+        base = window_memory_coefficients(nodes, length, *span)
+        offsets = np.arange(span[0], span[0] + span[1])
     if delta <= 0.0:
         return base
     a = delta / length
-    m = np.arange(nodes)
-    x0 = np.where(m <= nodes // 2, m, m - nodes) / nodes - delta
+    x0 = offsets / nodes - delta
     g, gw = np.polynomial.legendre.leggauss(16)
     t = 0.5 * (g + 1.0)
     w = 0.5 * gw * np.exp(-a * t)
-    acc = np.zeros(nodes)
-    vals = np.empty(nodes)
+    acc = np.zeros(base.size)
+    vals = np.empty(base.size)
     for tq, wq in zip(t, w):
         _kernels.panel_values(x0 + delta * tq, nodes, vals)
         acc += wq * vals
@@ -244,7 +323,8 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float) -> np.n
 
 
 def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], ...],
-                              speed: float, nodes: int) -> np.ndarray:
+                              speed: float, nodes: int,
+                              span: tuple[int, int] | None = None) -> np.ndarray:
     """First column of the circulant operator for a Prony creep function.
 
     Parameters
@@ -257,13 +337,20 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
         ``w = V tau_ref k >= 0``; at 0 the memory terms take their relaxed limit.
     nodes : int
         Number of panels.
+    span : (first, count), optional
+        Only the signed offsets ``first .. first + count - 1``, without making the grid (the
+        Toeplitz operator of a contact window of a grid too fine to be made).
 
     Returns
     -------
-    ndarray, shape (nodes,)
+    ndarray, shape (nodes,) or (count,)
         ``C_m``: k v at X = m/N due to unit pressure on the panel centred at 0.
     """
-    base = elastic_coefficients(nodes)
+    if span is None:
+        base = elastic_coefficients(nodes)
+    else:
+        base = np.empty(span[1])
+        _kernels.panel_values(np.arange(span[0], span[0] + span[1]) / nodes, nodes, base)
     total = j_plus * base
     h = 1.0 / nodes
     lengths = [speed * tau_i / (2.0 * np.pi) for _, tau_i in terms]
@@ -278,5 +365,5 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
         else:
             j_local = j_plus + sum(local) - local[i]
             delta = collocation_shift(h, length, j_local, j_i)
-            total = total + j_i * shifted_memory_coefficients(nodes, length, delta)
+            total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span)
     return total

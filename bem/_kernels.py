@@ -168,6 +168,30 @@ def panel_values(x: np.ndarray, nodes: int, out: np.ndarray) -> None:
 
 
 @njit(cache=True)
+def _memory_source(mm: int, nodes: int, t_near: np.ndarray, w_near: np.ndarray,
+                   t_far: np.ndarray, w_far: np.ndarray, near: int,
+                   t_tail: np.ndarray, w_tail: np.ndarray, far: int) -> float:
+    """S_m of :func:`memory_sources` for the signed offset ``mm`` (not 0 or -1)."""
+    delta = np.pi / nodes
+    h = 1.0 / nodes
+    dist = mm if mm >= 0 else -mm - 1
+    if dist <= near:
+        tt = t_near
+        ww = w_near
+    elif dist <= far:
+        tt = t_far
+        ww = w_far
+    else:
+        tt = t_tail
+        ww = w_tail
+    acc = 0.0
+    base = mm * h
+    for q in range(tt.shape[0]):
+        acc += ww[q] * cl2_difference(_TWO_PI * (base + tt[q] * h), delta)
+    return (2.0 / np.pi) * acc
+
+
+@njit(cache=True)
 def memory_sources(nodes: int, t_near: np.ndarray, w_near: np.ndarray,
                    t_far: np.ndarray, w_far: np.ndarray, near: int,
                    t_tail: np.ndarray, w_tail: np.ndarray, far: int,
@@ -183,30 +207,28 @@ def memory_sources(nodes: int, t_near: np.ndarray, w_near: np.ndarray,
     intervals that contain such a singularity (m = 0 and m = -1 = nodes - 1) are
     left untouched here: the caller integrates them with a graded rule.
     """
-    delta = np.pi / nodes
-    h = 1.0 / nodes
     for m in range(nodes):
         if m == 0 or m == nodes - 1:
             continue
         mm = m if m <= nodes // 2 else m - nodes  # signed offset, for the band test
-        if mm >= 0:
-            dist = mm
-        else:
-            dist = -mm - 1
-        if dist <= near:
-            tt = t_near
-            ww = w_near
-        elif dist <= far:
-            tt = t_far
-            ww = w_far
-        else:
-            tt = t_tail
-            ww = w_tail
-        acc = 0.0
-        base = mm * h
-        for q in range(tt.shape[0]):
-            acc += ww[q] * cl2_difference(_TWO_PI * (base + tt[q] * h), delta)
-        out[m] = (2.0 / np.pi) * acc
+        out[m] = _memory_source(mm, nodes, t_near, w_near, t_far, w_far, near,
+                                t_tail, w_tail, far)
+
+
+@njit(cache=True)
+def memory_sources_span(nodes: int, first: int, t_near: np.ndarray, w_near: np.ndarray,
+                        t_far: np.ndarray, w_far: np.ndarray, near: int,
+                        t_tail: np.ndarray, w_tail: np.ndarray, far: int,
+                        out: np.ndarray) -> None:
+    """out[i] = S_m of :func:`memory_sources` for the signed offsets m = first + i, on a grid
+    of `nodes` panels that need not be made (a contact window of a very fine grid); the
+    offsets 0 and -1 (the kinks) are left untouched."""
+    for i in range(out.shape[0]):
+        mm = first + i
+        if mm == 0 or mm == -1:
+            continue
+        out[i] = _memory_source(mm, nodes, t_near, w_near, t_far, w_far, near,
+                                t_tail, w_tail, far)
 
 
 @njit(cache=True)

@@ -72,6 +72,57 @@ class CirculantOperator:
         return out[idx]
 
 
+class WindowOperator:
+    """``v = T sigma`` on a contact window of ``n`` panels of a grid too fine to be made.
+
+    ``T`` is the Toeplitz block of the periodic operator, ``T_ij = C[i - j]`` for the signed
+    offsets ``-(n - 1) .. n - 1``, applied through its circulant embedding of size 2n (whose
+    column holds ``C_0 .. C_n`` and ``C_(-(n-1)) .. C_(-1)``): the product on the window is
+    exact.  The "inverse" is only a preconditioner (the solver's Krylov solves use it as they
+    use ``R C^+ R^T``): ``inverse_symbol``'s circulant of size 2n restricted to the window, by
+    default the embedding's.
+
+    Parameters
+    ----------
+    coefficients : ndarray, shape (2n + 1,)
+        ``C_m`` for the signed offsets m = -n .. n.
+    inverse_symbol : ndarray, shape (n + 1,), optional
+        The symbol (``rfft`` convention) of the circulant whose inverse preconditions.
+    """
+
+    def __init__(self, coefficients: np.ndarray, inverse_symbol=None):
+        c = np.asarray(coefficients, dtype=float)
+        n = (c.size - 1) // 2
+        self.n = n
+        col = np.empty(2 * n)
+        col[: n + 1] = c[n:]
+        col[n + 1:] = c[1:n]
+        self.symbol = sfft.rfft(col)
+        self.inverse_symbol = self.symbol if inverse_symbol is None else inverse_symbol
+
+    def _through(self, values: np.ndarray, idx, inverse: bool) -> np.ndarray:
+        z = np.zeros(2 * self.n)
+        if idx is None:
+            z[: self.n] = values
+        else:
+            z[idx] = values
+        f = sfft.rfft(z)
+        if inverse:
+            f /= self.inverse_symbol
+        else:
+            f *= self.symbol
+        out = sfft.irfft(f, 2 * self.n)
+        return out[: self.n] if idx is None else out[idx]
+
+    def apply(self, sigma: np.ndarray) -> np.ndarray:
+        """k v = T sigma on the window (from the mean line of the period's deformed surface)."""
+        return self._through(sigma, None, False)
+
+    def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False):
+        """``(T z)[idx]`` (or the preconditioner's) for ``z`` equal to `values` on `idx`."""
+        return self._through(values, idx, inverse)
+
+
 def gmres(matvec, precond, b, x0, atol, restart, maxiter):
     """Restarted GMRES with right preconditioning (true residuals are monitored).
 

@@ -21,6 +21,15 @@ symmetric part is positive definite), hence GMRES and not conjugate gradients.
 Nested iteration: the problem is solved on grids N/4^l, ..., N/4, N; the
 sub-panel contact edges of one grid give the active set on the next, so that
 the finest grid usually needs two or three outer steps.
+
+Contact window (light loads, adaptive mesh, load control, the sinusoid): once a periodic grid
+has located a single patch narrower than 1/512 of the period, the refinement goes on in a
+window of about six patch widths around it, a block of panels of a periodic grid too fine to be
+made (up to 2^50 panels per period).  The operator there is the Toeplitz block of the periodic
+one, with the same exact coefficients (``influence_coefficients_nd(..., span)``), and the
+pressure is zero outside; heights and the separation are measured from the crest, so that gaps
+of the size of Delta keep their digits.  A window whose contact reaches its ends, or that does
+not meet the target, gives no answer: the periodic grids go on.
 """
 from __future__ import annotations
 
@@ -34,10 +43,15 @@ from . import _kernels
 from ._influence import influence_coefficients_nd
 from ._accepted import MAX_NODES, validate
 from ._assemble import (ROUNDOFF, STATUS_TARGET, _friction, _full_patch, _patches,
-                        build_result)
+                        _window_friction, build_result)
 from ._inputs import Prony, Sinusoid, _bad
-from ._operator import CirculantOperator, gmres
+from ._operator import CirculantOperator, WindowOperator, gmres
 from ._result import BemResult
+
+
+#: status of a contact-window grid whose contact reaches the window's ends (never returned:
+#: the adaptive mesh then answers from its periodic grids)
+WINDOW_FAILED = 6
 
 
 # --------------------------------------------------------------------------
@@ -52,11 +66,63 @@ class _Grid:
         y = profile.sample(nodes)
         self.y = y - y.mean()  # rounding only: samples have zero mean
         self.amp = float(profile.amplitude)
+        self.nodes = nodes      # panels per period
+        self.scale = self.amp   # of the heights and gaps (the Krylov and active-set allowances)
+        self.s_offset = 0.0     # the mean separation is s_offset + s
+        self.window = False
 
     @property
     def x(self):
         """Panel centres X_j = j/N - 1/2, made when asked (not kept: memory at large N)."""
         return np.arange(self.n) / self.n - 0.5
+
+
+class _WindowGrid:
+    """A contact window: panels ``first .. first + count - 1`` of a grid of ``nodes`` panels per
+    period that is never made (light loads: a contact of a few panels of the largest periodic
+    grid spans thousands of these).  The operator is the Toeplitz block of the periodic one
+    (exact coefficients, :class:`WindowOperator`); the pressure is zero off the window, whose
+    ends must stay free.  Heights are measured from the crest, ``k y - h k = -2 h k sin^2(pi
+    X)``, and the separation likewise (``s = h k + s_window``), so that gaps and Delta, whose
+    size is that of the window's drop, not of h, keep their digits.  The sinusoid only.
+    """
+
+    window = True
+
+    def __init__(self, profile, material: Prony, speed: float, nodes: int, first: int,
+                 count: int):
+        self.n = count
+        self.nodes = nodes
+        self.first = first
+        self.h = 1.0 / nodes
+        self.op = WindowOperator(influence_coefficients_nd(
+            material.j_plus, material.terms, speed, nodes, (-count, 2 * count + 1)),
+            _window_preconditioner(material, speed, count, nodes))
+        self.amp = float(profile.amplitude)
+        self.y = -2.0 * self.amp * np.sin(np.pi * self.x) ** 2
+        self.s_offset = self.amp
+        self.scale = float(-self.y.min())
+
+    @property
+    def x(self):
+        """Panel centres X = (first + j)/nodes - 1/2 (exact: integers below 2^53)."""
+        return (self.first + np.arange(self.n)) / self.nodes - 0.5
+
+
+def _window_preconditioner(material: Prony, speed: float, count: int, nodes: int):
+    """Symbol of the preconditioner of a window of `count` panels: the periodic operator of
+    period Lambda = 2 count/nodes (twice the window) on 2 count panels, ``Lambda (2/k) J*(k /
+    Lambda) sinc(pi k/(2 count))`` for mode k (the symbol of the periodic operator, lengths
+    scaled by Lambda).  It has the window's singularity and memory on scales below the window;
+    what differs (a constant, which the separation takes, and smooth low-rank parts) costs
+    GMRES a few steps.  The truncated kernel's own circulant, by contrast, carries the jump of a
+    long memory at its wrap: for E_inf/E0 = 1000 its inverse left GMRES stagnating.  Mode 0
+    takes mode 1's value (any nonzero value serves)."""
+    period = 2.0 * count / nodes
+    k = np.arange(count + 1, dtype=float)
+    k[0] = 1.0
+    sym = period * (2.0 / k) * material.jstar(k / period, speed) * np.sinc(k / (2.0 * count))
+    return sym
 
 
 def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
@@ -72,24 +138,25 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
     n = grid.n
     na = idx.size
     pinv = _restricted_inverse(op, idx)
+    per = grid.nodes  # the load is the mean over the period
     if load is not None:
         q = pinv(np.ones(na))
-        beta = q.sum() / n
-        # the load equation is scaled by h k/load so that the absolute Krylov tolerance
-        # (tol h k) bounds its error relative to the load, whatever the load
-        f = grid.amp / load
+        beta = q.sum() / per
+        # the load equation is scaled by scale/load so that the absolute Krylov tolerance
+        # (tol times the scale of the heights) bounds its error relative to the load
+        f = grid.scale / load
 
         def matvec(z):
             out = np.empty(na + 1)
             out[:na] = op.apply_on(idx, z[:na])
             out[:na] += z[na]
-            out[na] = f * z[:na].sum() / n
+            out[na] = f * z[:na].sum() / per
             return out
 
         def precond(r):
             # block elimination of s with P = R C^+ R^T in place of C_AA^-1
             u = pinv(r[:na])
-            t = (u.sum() / n - r[na] / f) / beta
+            t = (u.sum() / per - r[na] / f) / beta
             out = np.empty(na + 1)
             out[:na] = u - t * q
             out[na] = t
@@ -103,7 +170,7 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
         precond = pinv
         b = grid.y[idx] - sep
     # tol bounds every entry of the residual: gaps (k v) on A and the load equation
-    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.amp, restart, max_inner)
+    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.scale, restart, max_inner)
     sigma = np.zeros(n)
     sigma[idx] = z[:na]
     s = z[na] if load is not None else sep
@@ -171,13 +238,16 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     roundoff = ACTIVE_SET_ROUNDOFF
     # the free-panel step on a large grid, unless its rounding floor is a visible part of the
     # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
-    dual = (load is not None and n >= DUAL_MIN_NODES
+    dual = (load is not None and n >= DUAL_MIN_NODES and not grid.window
             and _dual_floor(grid) <= DUAL_MAX_FLOOR * load)
     for it in range(1, max_outer + 1):
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
         if active.all() and load is None and sep != 0.0:
             active = grid.y > sep  # full contact needs s = 0; restart from the overlap
+        if active.all() and grid.window:
+            status, message = WINDOW_FAILED, "the contact fills its window"
+            break
         if active.all():
             # full contact: C sigma = y - s on every panel; mean(C sigma) = 0 gives s
             s = float(grid.y.mean()) if load is not None else 0.0
@@ -206,19 +276,23 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         gap = grid.op.apply(sigma) - grid.y + s
         if not ok:
             status = 2
-            message = f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h)"
+            message = (f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
+                       + (f" = {relres / grid.scale:.3e} of the window's drop)"
+                          if grid.window else ")"))
             break
-        key = _next_active_set(active, sigma, gap, new, roundoff, grid.amp)
+        key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
         if key in seen and roundoff < CYCLE_ROUNDOFF:
             # the sets repeat: the panels that flip may all sit within the validity gate's
             # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
             # them with that allowance from here on (a second cycle is final)
             roundoff = CYCLE_ROUNDOFF
             seen.clear()
-            key = _next_active_set(active, sigma, gap, new, roundoff, grid.amp)
+            key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
         if key is None:
             status, message = 0, ("converged" if roundoff < CYCLE_ROUNDOFF else
                                   "converged (at the validity gate's round-off, after a cycle)")
+            if grid.window and (active[0] or active[-1]):
+                status, message = WINDOW_FAILED, "the contact reaches an end of its window"
             break
         if key in seen:
             status, message = 3, f"active set cycles (outer step {it} repeats step {seen[key]})"
@@ -272,11 +346,14 @@ def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
         for p in patches:
             xr = (x - p.trailing_edge) % 1.0
             active |= xr < (p.leading_edge - p.trailing_edge)
-    xp = np.concatenate((xc - 1.0, xc, xc + 1.0))
+    if prev_grid.window:
+        xp, sp = xc, prev["sigma"]  # zero at both ends: np.interp holds it beyond
+    else:
+        xp = np.concatenate((xc - 1.0, xc, xc + 1.0))
+        sp = np.tile(prev["sigma"], 3)
     del xc
-    sp = np.tile(prev["sigma"], 3)
     sigma = np.interp(x, xp, sp) * active
-    return active, sigma, prev["s"]
+    return active, sigma, prev["s"] + prev_grid.s_offset - grid.s_offset
 
 
 # --------------------------------------------------------------------------
@@ -334,6 +411,15 @@ KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
 ACTIVE_SET_ROUNDOFF = 2e-13
 #: ... and once the sets have cycled: just inside the validity gate's 1e-12
 CYCLE_ROUNDOFF = 9e-13
+#: a single patch of at most this fraction of the period hands over to a contact window
+WINDOW_MAX_FRACTION = 1.0 / 512.0
+#: panels of the first window level, and the most a window gets
+WINDOW_START_PANELS = 1024
+WINDOW_MAX_PANELS = 2 ** 21
+#: the window spans at most this many (at least half as many) patch widths
+WINDOW_SPAN = 6.0
+#: the finest virtual grid of a window (its positions j/nodes stay exact)
+WINDOW_MAX_NODES = 2 ** 50
 #: the default accuracy target of the adaptive mesh
 DEFAULT_RTOL = 1e-6
 #: the error estimate is this factor times the first-order bound of the last differences
@@ -379,14 +465,18 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     hk : float, optional
         Amplitude of the default sinusoid (default 1); not with ``profile``.
     nodes : int, optional
-        Panels per period (a power of two is not required): a fixed mesh.  Default: adaptive.
+        Panels per period (a power of two is not required): a fixed mesh.  Default: adaptive
+        (whose ``result.nodes`` is, after a contact window, the panels per period of the
+        window's grid, which may exceed ``max_nodes``; ``result.diagnostics["window"]`` then
+        describes the window).
     rtol : float, optional
         Adaptive mesh only: the target of the estimated errors, relative for Delta/h and mu,
         absolute for ka and ke (the contact fraction times pi with several patches).
         Default 1e-6.
     max_nodes : int, optional
-        Adaptive mesh only: the largest grid (a power of two, up to ``bem.MAX_NODES``);
-        default ``bem.MAX_NODES`` (2^24, or less where memory is smaller).
+        Adaptive mesh only: the largest periodic grid (a power of two, up to
+        ``bem.MAX_NODES``); default ``bem.MAX_NODES`` (2^24, or less where memory is smaller).
+        A contact window has its own bound, 2^21 panels in the window.
         When the target is not met there, the result is not a success and says which
         estimate was reached.
     tol : float
@@ -469,6 +559,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     reached = None
     failed = 0
     good = None      # (res, grid) of the finest converged grid
+    window = None    # what the contact window gave, once tried
     for n in sizes:
         grid = _Grid(profile, material, speed, n)
         steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
@@ -509,6 +600,15 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         if nodes is None and reason is None and _met(estimate, scalars[-1][1], rtol):
             reached = n
             break
+        if nodes is None and window is None and _window_wanted(load, profile, scalars[-1][1]):
+            window = _window_refine(res, grid, profile, material, speed, load, rtol, tol,
+                                    max_outer, restart, max_inner)
+            if window["reached"]:
+                levels.extend(window["levels"])
+                last = good = (window["res"], window["grid"])
+                estimate, reason, reached = window["estimate"], None, window["grid"].nodes
+                break
+            # the window did not reach the target: the periodic grids go on as without it
     res, grid = last
     if nodes is None and reached is None and good is not None:
         # the finest converged grid, flagged: its estimate did not meet the target
@@ -523,10 +623,77 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     if nodes is not None and reason is not None and estimate is not None \
             and not _memory_only(reason):
         estimate = None  # the grids below a fixed one do not resolve the contact: no estimate
+    extra = {"estimate_note": reason} if reason else {}
+    if window is not None:
+        extra["window"] = window["summary"]
     return build_result(res, grid, profile, material, speed, amp, load, levels,
                         asked=asked, control=control,
                         error_estimate=estimate, rtol=rtol if nodes is None else None,
-                        extra_diagnostics={"estimate_note": reason} if reason else None)
+                        extra_diagnostics=extra or None)
+
+
+def _window_wanted(load, profile, values):
+    """Whether a converged periodic grid hands over to a contact window: load control, the
+    sinusoid, one patch of at most WINDOW_MAX_FRACTION of the period (fewer than 2048 panels at
+    N = 2^20), located to within a few panels (at least MIN_PATCH_PANELS of them)."""
+    return (load is not None and isinstance(profile, Sinusoid) and values["npatch"] == 1
+            and values["contact_fraction"] <= WINDOW_MAX_FRACTION
+            and values["min_panels"] >= MIN_PATCH_PANELS)
+
+
+def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_outer,
+                   restart, max_inner):
+    """Refine a contact window until its estimate meets rtol (light loads).
+
+    The window is centred on the patch of the periodic grid ``pgrid`` and spans
+    WINDOW_SPAN (at least half that) times its width: panels ``first .. first + n - 1`` of a
+    virtual grid of ``nodes = 2^k`` panels per period, with n = WINDOW_START_PANELS, 2n, ...
+    up to WINDOW_MAX_PANELS (the same interval on every level, ``nodes`` doubling with n).
+    Each level starts from the one before (the first from ``pgrid``); the estimate is that of
+    the periodic grids (:func:`_estimate`) on the window's levels.  Returns a dict: ``reached``
+    (the target met on a converged window whose contact keeps off its ends), ``res``, ``grid``,
+    ``estimate``, ``levels`` (nodes per period, active-set steps, inner iterations, status)
+    and ``summary`` (for the diagnostics).
+    """
+    patch = res["patches"][0]
+    width = patch.width
+    centre = 0.5 * (patch.trailing_edge + patch.leading_edge)
+    n = WINDOW_START_PANELS
+    nodes = 1 << max(0, math.ceil(math.log2(n / (WINDOW_SPAN * width))))
+    first = int(round((centre + 0.5) * nodes - 0.5 * n))
+    start = (res, pgrid)
+    scalars, levels = [], []
+    out = {"reached": False, "res": None, "grid": None, "estimate": None, "levels": levels}
+    note = "not converged"
+    span = None
+    while n <= WINDOW_MAX_PANELS and nodes <= WINDOW_MAX_NODES:
+        span = ((first + np.array([0, n - 1])) / nodes - 0.5, n)
+        grid = _WindowGrid(profile, material, speed, nodes, first, n)
+        grid.coarse = pgrid
+        wres = _solve_one(grid, load, None, [start], tol, max_outer, restart, max_inner)
+        levels.append((nodes, wres["nit"], tuple(wres["inner"]), wres["status"]))
+        if wres["status"] != 0:
+            note = wres["message"]
+            break
+        values = _level_scalars(wres, grid, profile, material, speed, grid.amp)
+        if values["npatch"] != 1:
+            note = f"{values['npatch']} patches in the window"
+            break
+        scalars.append((nodes, values))
+        estimate, reason = _estimate(scalars, material, speed)
+        out.update(res=wres, grid=grid, estimate=estimate)
+        note = reason or "estimate above rtol"
+        if reason is None and _met(estimate, values, rtol):
+            out["reached"] = True
+            note = "target met"
+            break
+        start = (wres, grid)
+        n, nodes, first = 2 * n, 2 * nodes, 2 * first
+    out["summary"] = {"from_x_over_lambda": float(span[0][0]) if span else None,
+                      "to_x_over_lambda": float(span[0][1]) if span else None,
+                      "panels": span[1] if span else 0, "coarse_nodes": pgrid.n,
+                      "outcome": note, "levels": [list(lv) for lv in levels]}
+    return out
 
 
 def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None):
@@ -536,6 +703,10 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
     best = start.pop() if start else None
     n = grid.n
     full = None
+    if grid.window:  # started from a coarser grid always
+        active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
+                           max_inner)
     if sep == 0.0:
         # Delta = h: full contact, whose load is not unique; return the smallest
         # one (the full-contact threshold, the limit of Delta -> h from below)
@@ -579,16 +750,22 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     """The scalars of one converged grid (for the estimate): plain floats, None where null."""
     sigma = res["sigma"]
     active = res["active"]
-    tau_f, _ = _friction(sigma, grid.y, material, speed)
-    mean_p = float(sigma.mean())
-    out = {"penetration": (amp - float(res["s"])) / amp, "tau_f": tau_f,
-           "mu": tau_f / mean_p if mean_p > 0 else math.nan}
+    if grid.window:
+        tau_f = _window_friction(sigma, grid, material, speed)
+        mean_p = float(sigma.sum()) / grid.nodes
+    else:
+        tau_f, _ = _friction(sigma, grid.y, material, speed)
+        mean_p = float(sigma.mean())
+    out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,
+           "mu": tau_f / mean_p if mean_p > 0 else math.nan,
+           # the gaps' round-off that the validity gate allows, over h (ROUNDOFF of the scale)
+           "gap_roundoff": ROUNDOFF * grid.scale / amp}
     if active.all():
         p = _full_patch(sigma, grid.y, profile, mean_p)
         out.update(contact_fraction=1.0, ka=math.pi, ke=None, ke_hat=p.ke_hat, npatch=1,
                    min_panels=grid.n)
         return out
-    patches = _patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y)
+    patches = _patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y, grid.window)
     res["patches"] = patches  # the next grid's start needs their edges too
     frac = float(sum(p.width for p in patches))
     out.update(contact_fraction=frac, npatch=len(patches),
@@ -652,9 +829,10 @@ def _estimate(scalars, material, speed):
             cands += [w * abs(vals[0] - vals[j]), w * abs(vals[j - 1] - vals[j])]
         e = ESTIMATE_SAFETY * max(cands)
         if k == "penetration":
-            # the validity gate counts gaps within ROUNDOFF h as zero: the separation is not
-            # certified below that, whatever the grids agree to (it shows where Delta/h is small)
-            e += ESTIMATE_SAFETY * ROUNDOFF
+            # the validity gate counts gaps within ROUNDOFF of their scale (h; a window's drop)
+            # as zero: the separation is not certified below that, whatever the grids agree to
+            # (it shows where Delta/h is small)
+            e += ESTIMATE_SAFETY * max(sc["gap_roundoff"] for _, sc in run)
         if k in RELATIVE_KEYS:
             scale = abs(vals[0])
             e = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)

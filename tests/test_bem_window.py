@@ -1,0 +1,159 @@
+"""The contact window of light loads: a window of a periodic grid too fine to be made, with the
+Toeplitz block of the periodic operator (exact coefficients), against the periodic grid's own
+coefficients, the dense Toeplitz product, the periodic BEM and the semi-analytic road."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from scipy.linalg import toeplitz
+
+import analytic
+import bem
+from bem import _influence, _kernels, _solver
+from bem._inputs import Prony
+from bem._operator import WindowOperator
+
+#: window coefficients against the periodic grid's: the same integrals, summed in another
+#: order (the periodic recursion adds the whole period; measured up to 1e-13 of the largest
+#: coefficient at E_inf/E0 = 700, 1e-14 at 3)
+TOL_COEFF = 5e-13
+
+
+def test_memory_sources_span_is_memory_sources_on_its_offsets():
+    nodes, length = 160, 0.002
+    a = (1.0 / nodes) / length
+    rules = []
+    for n in (16, 9, 4):
+        rules += list(_influence.exp_weight_rule(a, n))
+    full = np.zeros(nodes)
+    _kernels.memory_sources(nodes, *rules[:4], 2, *rules[4:], 32, full)
+    span = np.zeros(nodes - 1)  # signed offsets -79 .. 79
+    _kernels.memory_sources_span(nodes, -79, *rules[:4], 2, *rules[4:], 32, span)
+    m = np.arange(-79, 80)
+    keep = (m != 0) & (m != -1)
+    assert np.array_equal(span[keep], full[m[keep] % nodes])
+
+
+MATERIALS = {"sls3": Prony.standard_linear_solid(3.0),
+             "sls700": Prony.standard_linear_solid(700.0),
+             "prony2": Prony(1.0, (0.5, 0.3), (0.01, 10.0))}
+
+
+@pytest.mark.parametrize("name", sorted(MATERIALS))
+@pytest.mark.parametrize("speed", [1e-4, 0.01, 1.0, 1e4])
+def test_window_coefficients_are_the_periodic_ones(name, speed):
+    """Offsets -300 .. 300 of N = 4096: elastic, memory (short, comparable and longer than the
+    period) and, for the stiff material at low speed, the shifted collocation."""
+    mat = MATERIALS[name]
+    nodes = 4096
+    full = _influence.influence_coefficients_nd(mat.j_plus, mat.terms, speed, nodes)
+    win = _influence.influence_coefficients_nd(mat.j_plus, mat.terms, speed, nodes, (-300, 601))
+    ref = full[np.arange(-300, 301) % nodes]
+    assert np.max(np.abs(win - ref)) <= TOL_COEFF * np.max(np.abs(full))
+
+
+def test_the_stiff_case_above_exercises_the_collocation_shift():
+    mat = MATERIALS["sls700"]
+    h = 1.0 / 4096
+    length = 0.01 * mat.terms[0][1] / (2.0 * math.pi)
+    assert _influence.collocation_shift(h, length, mat.j_plus, mat.terms[0][0]) > 0.0
+
+
+def test_window_coefficients_refuse_a_window_that_is_not_inside_a_period():
+    with pytest.raises(ValueError, match="count"):
+        _influence.window_memory_coefficients(64, 0.1, -30, 61)
+
+
+def test_window_operator_is_the_dense_toeplitz_block():
+    rng = np.random.default_rng(3)
+    n = 37
+    c = rng.standard_normal(2 * n + 1)  # offsets -n .. n
+    dense = toeplitz(c[n:2 * n], c[n::-1][:n])  # T_ij = c[i - j]
+    op = WindowOperator(c)
+    s = rng.standard_normal(n)
+    assert np.allclose(op.apply(s), dense @ s, rtol=0, atol=1e-13 * np.abs(dense @ s).max())
+    idx = np.array([2, 3, 4, 10, 30], dtype=np.int32)
+    v = rng.standard_normal(idx.size)
+    assert np.allclose(op.apply_on(idx, v), dense[np.ix_(idx, idx)] @ v, rtol=0, atol=1e-13)
+
+
+def _true(r, ref):
+    return {"mu": abs(r.mu / ref.mu - 1), "penetration": abs(r.penetration / ref.penetration - 1),
+            "ka": abs(r.ka - ref.ka), "ke": abs(r.ke - ref.ke)}
+
+
+LIGHT = [dict(load=1e-8, speed=1.0), dict(load=1e-8, speed=100.0),
+         dict(load=1e-8, speed=0.01, ratio=1000.0), dict(load=1e-7, speed=10.0, ratio=300.0,
+                                                          hk=10.0)]
+
+
+@pytest.mark.parametrize("kw", LIGHT, ids=lambda kw: ",".join(f"{k}={v:g}" for k, v in kw.items()))
+def test_light_loads_meet_the_default_target_in_a_window(kw):
+    """Contacts of 2-20 panels at N = 4096 (ka 5e-5 to 2e-4): the default answers within its
+    estimate and within 10 x rtol of the semi-analytic road (the periodic grids alone refused
+    these at 2^24, or took minutes)."""
+    ref = analytic.solve(**kw)
+    r = bem.solve(**kw)
+    assert r.success, r.message
+    win = r.diagnostics["window"]
+    assert win["outcome"] == "target met", win
+    assert r.nodes > 2 ** 24 // 64 and r.nodes & (r.nodes - 1) == 0
+    for key, err in _true(r, ref).items():
+        assert r.error_estimate[key] <= 1e-6, (key, r.error_estimate[key])
+        assert err <= r.error_estimate[key], (key, err, r.error_estimate[key])
+
+
+def test_window_and_periodic_grids_agree_where_both_answer(monkeypatch):
+    """p~ = 2e-6 (a contact of 0.13 % of the period): the window's answer against the periodic
+    grids' (the window turned off) to within the sum of their estimates, the BEM against
+    itself with no semi-analytic road involved."""
+    kw = dict(load=2e-6, speed=1.0)
+    w = bem.solve(**kw)
+    assert w.success and w.diagnostics["window"]["outcome"] == "target met"
+    monkeypatch.setattr(_solver, "WINDOW_MAX_FRACTION", 0.0)
+    p = bem.solve(**kw)
+    assert p.success and "window" not in p.diagnostics
+    for key in ("mu", "penetration"):
+        bound = w.error_estimate[key] + p.error_estimate[key]
+        assert abs(getattr(w, key) / getattr(p, key) - 1) <= bound
+    for key in ("ka", "ke"):
+        bound = w.error_estimate[key] + p.error_estimate[key]
+        assert abs(getattr(w, key) - getattr(p, key)) <= bound
+
+
+def test_window_result_fields_cover_the_period_and_are_valid():
+    r = bem.solve(load=1e-7, speed=1.0)
+    assert r.success and r.diagnostics["window"]["outcome"] == "target met"
+    x, p, u, g = r.x_over_lambda, r.pressure, r.displacement, r.gap
+    assert np.all(np.diff(x) > 0) and x[0] >= -0.5 and x[-1] < 0.5
+    assert p.min() >= 0.0 and g.min() >= -1e-12
+    win = r.diagnostics["window"]
+    inside = (x >= win["from_x_over_lambda"]) & (x <= win["to_x_over_lambda"])
+    assert int(inside.sum()) == win["panels"] and np.all(p[~inside] == 0.0)
+    # the load is the mean pressure over the period (window panels of width 1/nodes)
+    assert abs(p[inside].sum() / r.nodes / 1e-7 - 1) <= 1e-8
+    # the window's displacement meets the coarse grid's outside it (gathered pressure) at
+    # the window's ends, to the coarse grid's accuracy there
+    lo = int(np.flatnonzero(inside)[0])
+    hi = int(np.flatnonzero(inside)[-1])
+    for a, b in ((lo - 1, lo), (hi, hi + 1)):
+        slope = abs(u[a] - u[b]) / abs(x[b] - x[a])
+        assert slope < 10.0 * np.max(np.abs(np.diff(u[inside]) / np.diff(x[inside])))
+    # friction: the dissipation form against the direct one
+    assert r.residuals["friction_mismatch"] < 1e-3
+
+
+def test_a_window_too_small_is_not_an_answer(monkeypatch):
+    """A window that the contact fills (or reaches the ends of) gives no answer: the periodic
+    grids go on, and at a low cap refuse."""
+    monkeypatch.setattr(_solver, "WINDOW_SPAN", 1.0)
+    r = bem.solve(load=1e-6, speed=1.0, max_nodes=2 ** 17)
+    assert not r.success and r.status == 5
+    assert "window" in r.diagnostics["window"]["outcome"], r.diagnostics["window"]
+
+
+def test_penetration_control_keeps_the_periodic_grids():
+    r = bem.solve(penetration=2e-6, speed=1.0, max_nodes=2 ** 18)
+    assert "window" not in r.diagnostics
