@@ -31,6 +31,9 @@ import bem
 
 #: the box of the random sample: name -> (low, high), log-uniform
 BOX = {"load": (1e-4, 10.0), "speed": (1e-4, 1e4), "ratio": (1.01, 1000.0), "hk": (0.01, 10.0)}
+#: the light-load sample (--light): the same box but the load, which is hk times a log-uniform
+#: p~/hk down to the BEM's accepted bound (contacts of 1e-4 of the period and less)
+LIGHT_LOAD_OVER_HK = (1e-8, 1e-4)
 #: quantities compared: (key, relative?)
 QUANTITIES = (("mu", True), ("penetration", True), ("ka", False), ("ke", False))
 
@@ -39,11 +42,17 @@ def _progress(msg):
     print(msg, file=sys.stderr, flush=True)
 
 
-def sample(points, seed):
-    """`points` operating points, log-uniform in BOX (deterministic for a seed)."""
+def sample(points, seed, light=False):
+    """`points` operating points, log-uniform in BOX (deterministic for a seed); with `light`,
+    the load is hk times a log-uniform p~/hk in LIGHT_LOAD_OVER_HK."""
     rng = np.random.default_rng(seed)
     cols = {k: np.exp(rng.uniform(math.log(lo), math.log(hi), points))
             for k, (lo, hi) in BOX.items()}
+    if light:
+        lo, hi = LIGHT_LOAD_OVER_HK
+        # not below the accepted bound p~/hk = 1e-8 by rounding
+        q = np.clip(np.exp(rng.uniform(math.log(lo), math.log(hi), points)), lo * (1 + 1e-12), hi)
+        cols["load"] = cols["hk"] * q
     return [{k: float(cols[k][i]) for k in BOX} for i in range(points)]
 
 
@@ -95,14 +104,18 @@ def _fmt(v):
     return "-" if v is None else f"{v:.1e}"
 
 
-def honesty(points=300, seed=20261123, nodes=4096, rtol=1e-6, workers=2, out=sys.stdout):
-    """The honesty study and the adaptive study on one random sample; returns 0 when every
-    target holds, 1 otherwise."""
+def honesty(points=300, seed=20261123, nodes=4096, rtol=1e-6, workers=2, out=sys.stdout,
+            light=False):
+    """The honesty study and the adaptive study on one random sample (with `light`, the
+    light-load sample); returns 0 when every target holds, 1 otherwise."""
     import functools
-    pts = sample(points, seed)
+    pts = sample(points, seed, light)
+    box = dict(BOX)
     print(f"# Error estimates and the adaptive mesh against the semi-analytic road\n\n"
           f"{points} points, seed {seed}, log-uniform: " +
-          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in BOX.items()) +
+          ("load/hk {:g} … {:g}, ".format(*LIGHT_LOAD_OVER_HK) if light else "") +
+          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in box.items()
+                    if not (light and k == "load")) +
           f"; fixed mesh N = {nodes}; adaptive default rtol = {rtol:g}\n", file=out)
     print("point  load  speed  ratio  hk | fixed: success, true/estimate of mu, Δ/h, ka, ke | "
           "adaptive: success, N, seconds, true errors of mu, Δ/h, ka, ke", file=out)

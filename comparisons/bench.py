@@ -129,7 +129,8 @@ def main(args):
     if getattr(args, "honesty", False):
         from . import _bench_trust
         seed = 20261123 if getattr(args, "seed", None) is None else args.seed
-        return _bench_trust.honesty(300 if args.points is None else args.points, seed)
+        return _bench_trust.honesty(300 if args.points is None else args.points, seed,
+                                    light=getattr(args, "light", False))
     points = 1000 if args.points is None else args.points
     max_log2n = 20 if args.max_log2n is None else args.max_log2n
     rc = 0

@@ -8,7 +8,7 @@
                                 [--workers W | --scheduler ADDRESS] [--fields DIR]
     python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
-    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S]] [--max-log2n K]
+    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light]] [--max-log2n K]
     python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
 
 `point` prints one JSON object; `sweep` one per line, in order (loads outer, speeds inner); a
@@ -216,6 +216,8 @@ def add_bench_parser(sub):
                         "road on a random sample of the accepted inputs (default 300 points)")
     p.add_argument("--seed", type=_integer, action=_Once, metavar="S",
                    help="seed of the --honesty sample (default 20261123)")
+    p.add_argument("--light", action="store_true",
+                   help="with --honesty: light loads, p~/hk log-uniform in 1e-8 … 1e-4")
     p.add_argument("--max-log2n", type=_integer, action=_Once, metavar="K",
                    help="largest BEM mesh 2^K of the BEM speed/memory table (default 20)")
     p.set_defaults(run=_cmd_bench)
@@ -500,6 +502,8 @@ def _cmd_bench(args):
         raise BadInput("--max-log2n is not allowed with --cluster: it sets the BEM tables")
     if args.seed is not None and not args.honesty:
         raise BadInput("--seed is not allowed without --honesty: it seeds that sample")
+    if args.light and not args.honesty:
+        raise BadInput("--light is not allowed without --honesty: it chooses that sample")
     if args.honesty and args.max_log2n is not None:
         raise BadInput("--max-log2n is not allowed with --honesty: it sets the BEM tables")
     from . import bench

@@ -157,3 +157,13 @@ def test_a_window_too_small_is_not_an_answer(monkeypatch):
 def test_penetration_control_keeps_the_periodic_grids():
     r = bem.solve(penetration=2e-6, speed=1.0, max_nodes=2 ** 18)
     assert "window" not in r.diagnostics
+
+
+def test_the_light_honesty_sample_stays_inside_the_accepted_inputs():
+    """`bench --honesty --light`: every point is one the BEM accepts (p~/hk down to 1e-8)."""
+    from comparisons import _bench_trust
+    pts = _bench_trust.sample(400, 7, light=True)
+    q = [p["load"] / p["hk"] for p in pts]
+    assert min(q) >= 1e-8 and max(q) <= 1e-4 and min(q) < 1e-7
+    for p in pts:
+        bem.validate(**p)

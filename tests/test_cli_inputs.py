@@ -96,6 +96,8 @@ ODD = [
     (["bench", "--points", "-5"], "--points -5"),
     (["bench", "--cluster", "--max-log2n", "10"], "--max-log2n"),
     (["bench", "--max-log2n", "40"], "--max-log2n 40"),
+    (["bench", "--light"], "--light"),
+    (["bench", "--bem", "--light"], "--light"),
     (["crosscheck", "--tolerances", "--nodes", "1024"], "not allowed with"),
     ([], "required"),
     (["frobnicate"], "invalid choice"),
