@@ -370,7 +370,7 @@ def _window_friction(sigma, grid, material: Prony, speed: float):
         tau_f = (h/2 pi) sum_i (J_i/L_i) sigma^T (C - M_i) sigma  >= 0,
 
     a sum of positive dissipations, where the direct form -(1/2 pi) int sigma d(k y)/dX
-    cancels between the two halves of the contact (at V/V0 = 100, p~ = 1e-8: mu is 3e-5 of
+    cancels between the two halves of the contact (at V/V0 = 100, p~ = 1e-8: mu is 4e-5 of
     each half).  At rest (``L_i = 0``) a term dissipates nothing.  A memory under 64 panels,
     which the midpoint rule does not resolve (and where C - M_i cancels), makes the whole the
     direct form: exact for piecewise-constant pressure, ``k y(X + h/2) - k y(X - h/2) = -2 h k

@@ -23,7 +23,7 @@ sub-panel contact edges of one grid give the active set on the next, so that
 the finest grid usually needs two or three outer steps.
 
 Contact window (light loads, adaptive mesh, load control, the sinusoid): once a periodic grid
-has located a single patch narrower than 1/512 of the period, the refinement goes on in a
+has located a single patch narrower than 1/64 of the period, the refinement goes on in a
 window of about six patch widths around it, a block of panels of a periodic grid too fine to be
 made (up to 2^50 panels per period).  The operator there is the Toeplitz block of the periodic
 one, with the same exact coefficients (``influence_coefficients_nd(..., span)``), and the
@@ -411,8 +411,11 @@ KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
 ACTIVE_SET_ROUNDOFF = 2e-13
 #: ... and once the sets have cycled: just inside the validity gate's 1e-12
 CYCLE_ROUNDOFF = 9e-13
-#: a single patch of at most this fraction of the period hands over to a contact window
-WINDOW_MAX_FRACTION = 1.0 / 512.0
+#: a single patch of at most this fraction of the period hands over to a contact window (its
+#: grid is then at least 2^21/(6/64) = 2.2e7 panels per period, finer than the periodic cap;
+#: and a stiff material's pressure relaxation layer, which the periodic grids resolve last, gets
+#: tens of panels)
+WINDOW_MAX_FRACTION = 1.0 / 64.0
 #: panels of the first window level, and the most a window gets
 WINDOW_START_PANELS = 1024
 WINDOW_MAX_PANELS = 2 ** 21
@@ -634,8 +637,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
 
 def _window_wanted(load, profile, values):
     """Whether a converged periodic grid hands over to a contact window: load control, the
-    sinusoid, one patch of at most WINDOW_MAX_FRACTION of the period (fewer than 2048 panels at
-    N = 2^20), located to within a few panels (at least MIN_PATCH_PANELS of them)."""
+    sinusoid, one patch of at most WINDOW_MAX_FRACTION of the period, located to within a few
+    panels (at least MIN_PATCH_PANELS of them)."""
     return (load is not None and isinstance(profile, Sinusoid) and values["npatch"] == 1
             and values["contact_fraction"] <= WINDOW_MAX_FRACTION
             and values["min_panels"] >= MIN_PATCH_PANELS)
