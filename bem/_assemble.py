@@ -266,7 +266,8 @@ def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False):
     are measured from it; without (the solver's prolongation only needs the edges) the summit
     is the crest X = 0.  ``window``: the panels are a contact window, not a period (the free
     panels of each side end at the window's ends; a patch that reaches one is the caller's
-    error).
+    error).  The edge fit's panel distances scale with the square root of the panels given
+    (`edge_offset`): a window's, whose patch spans a sixth to a third of them, as a period's.
     """
     out = []
     n = sigma.size
@@ -371,9 +372,9 @@ def _window_friction(sigma, grid, material: Prony, speed: float):
 
     a sum of positive dissipations, where the direct form -(1/2 pi) int sigma d(k y)/dX
     cancels between the two halves of the contact (at V/V0 = 100, p~ = 1e-8: mu is 4e-5 of
-    each half).  At rest (``L_i = 0``) a term dissipates nothing.  A memory under 64 panels,
-    which the midpoint rule does not resolve (and where C - M_i cancels), makes the whole the
-    direct form: exact for piecewise-constant pressure, ``k y(X + h/2) - k y(X - h/2) = -2 h k
+    each half).  At rest (``L_i = 0``) a term dissipates nothing.  A memory under 64 panels of
+    the window's first grid (``grid.form_nodes``), which the midpoint rule does not resolve
+    (and where C - M_i cancels), makes the whole the direct form: exact for piecewise-constant pressure, ``k y(X + h/2) - k y(X - h/2) = -2 h k
     sin(pi h) sin(2 pi X)``.
     """
     n = grid.n
@@ -387,11 +388,15 @@ def _window_friction(sigma, grid, material: Prony, speed: float):
         length = speed * tau_i / _TWO_PI
         if j_i == 0.0 or length == 0.0:  # no memory (at rest: relaxed), no dissipation
             continue
-        if length < 64.0 * h:  # no memory to speak of: the direct form
+        if length < 64.0 / getattr(grid, "form_nodes", grid.nodes):
+            # a memory under 64 panels (of the window's first grid: one form for all its
+            # grids, whose differences make the estimate): the direct form
             return grid.amp * math.sin(math.pi * h) / math.pi * \
                 float(np.dot(sigma, np.sin(_TWO_PI * grid.x)))
-        m_i = window_memory_coefficients(grid.nodes, length, -n, 2 * n + 1)
-        total += (j_i / length) * (c_sigma - _dot_window(m_i, sigma))
+        cache = grid.__dict__.setdefault("memory_columns", {})
+        if length not in cache:
+            cache[length] = window_memory_coefficients(grid.nodes, length, -n, 2 * n + 1)
+        total += (j_i / length) * (c_sigma - _dot_window(cache[length], sigma))
     return h / _TWO_PI * total
 
 
@@ -423,8 +428,10 @@ def _window_fields(sigma, gap, active, s, grid):
     return xs, p, u, g
 
 
-def _problems(sc, fields, load, asked_load):
-    """What makes a converged state not a physically valid answer (list of str, empty if valid)."""
+def _problems(sc, fields, load, asked_load, gap_roundoff=ROUNDOFF):
+    """What makes a converged state not a physically valid answer (list of str, empty if valid).
+    ``gap_roundoff``: the gap (over h) counted as zero, ROUNDOFF of the heights' scale (h; a
+    contact window's drop)."""
     out = []
     for k, v in sc.items():
         if v is not None and not math.isfinite(v):
@@ -450,7 +457,7 @@ def _problems(sc, fields, load, asked_load):
         out.append(f"max σ = {pmax!r}: no contact")
     elif float(p.min()) < -ROUNDOFF * pmax:
         out.append(f"negative pressure (min σ = {float(p.min()) / pmax:.3e} of max σ)")
-    if float(g.min()) < -ROUNDOFF:
+    if float(g.min()) < -gap_roundoff:
         out.append(f"interpenetration (min gap = {float(g.min()):.3e} h)")
     if asked_load is not None and not abs(load - asked_load) <= LOAD_MISMATCH * asked_load:
         out.append(f"mean σ = {load!r} is not the load {asked_load!r} asked for")
@@ -567,7 +574,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
               "penetration": penetration, "separation": separation, "tau_f": tau_f, "mu": mu,
               "load": mean_p}
         bad = _problems(sc, {"pressure": p_out, "displacement": disp, "gap": gap_out}, mean_p,
-                        load)
+                        load, ROUNDOFF * (grid.scale / amp))
         if bad:
             success, status = False, STATUS_INVALID
             message = "invalid result: " + "; ".join(bad)

@@ -187,7 +187,7 @@ def window_memory_coefficients(nodes: int, length: float, first: int,
                                count: int) -> np.ndarray:
     """:func:`memory_coefficients` at the signed offsets ``first .. first + count - 1`` only,
     for a grid too fine to be made (a contact window of ``count`` panels of a grid of
-    ``nodes`` panels per period; ``nodes`` up to 2^52).
+    ``nodes`` panels per period; panel values are finite up to 2^52).
 
     The recursion ``E_m = S_m + q E_(m+1)`` (``q = exp(-h/L)``) runs down from ``D + 1``,
     ``D = max(|first|, |last|) + 1``, whose value is the whole integral beyond:
@@ -218,12 +218,8 @@ def window_memory_coefficients(nodes: int, length: float, first: int,
     x0 = (d + 1) * h
     smooth = _smooth_memory_integral(x0, 1.0 - x0, length, nodes) / h
     e = (smooth + image) / -math.expm1(-a * nodes)  # E_(d+1)
-    r = math.exp(-a)
     out = np.empty(count)
-    for m in range(d, first - 1, -1):
-        e = src[m - lo] + r * e
-        if m <= last:
-            out[m - first] = e
+    _kernels.exponential_recursion_down(src[first - lo:], a, e, count, out)
     return a * out
 
 

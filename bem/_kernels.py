@@ -141,13 +141,16 @@ def cl2_difference(theta: float, delta: float) -> float:
     total = -2.0 * delta * np.log(2.0 * s)
     scale = 4.0 * eta
     tiny = 1e-18 * (abs(total) + delta)
-    ej = 1.0
+    # eta^(2j) Q_j(x) = sum_i c_ji z^i e2^(j-i) with z = e2 x = (eta cot u)^2 <= 1/9: neither
+    # factor over- or underflows (eta^(2j) and x^j do on grids of 2^37 panels and more)
+    z = e2 * x
     for j in range(1, COT_DERIV.shape[0]):
-        ej *= e2
         q = 0.0
+        p = 1.0
         for i in range(j, -1, -1):
-            q = q * x + COT_DERIV[j, i]
-        term = scale * ej * q
+            q = q * z + COT_DERIV[j, i] * p
+            p *= e2
+        term = scale * q
         total += term
         if term < tiny:
             break
@@ -250,6 +253,20 @@ def exponential_recursion(source: np.ndarray, a: float, out: np.ndarray) -> None
     for m in range(n - 1, 0, -1):
         nxt = source[m] + r * nxt
         out[m] = nxt
+
+
+@njit(cache=True)
+def exponential_recursion_down(source: np.ndarray, a: float, start: float, count: int,
+                               out: np.ndarray) -> None:
+    """E_k = S_k + exp(-a) E_(k+1) down from E_K = start (K = source.size), for k = K-1 .. 0;
+    out[k] = E_k for k < count (a window's recursion, started from the exact integral
+    beyond it)."""
+    r = np.exp(-a)
+    e = start
+    for k in range(source.shape[0] - 1, -1, -1):
+        e = source[k] + r * e
+        if k < count:
+            out[k] = e
 
 
 # --------------------------------------------------------------------------

@@ -353,7 +353,7 @@ def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
         sp = np.tile(prev["sigma"], 3)
     del xc
     sigma = np.interp(x, xp, sp) * active
-    return active, sigma, prev["s"] + prev_grid.s_offset - grid.s_offset
+    return active, sigma, prev["s"] + (prev_grid.s_offset - grid.s_offset)
 
 
 # --------------------------------------------------------------------------
@@ -421,7 +421,7 @@ WINDOW_START_PANELS = 1024
 WINDOW_MAX_PANELS = 2 ** 21
 #: the window spans at most this many (at least half as many) patch widths
 WINDOW_SPAN = 6.0
-#: the finest virtual grid of a window (its positions j/nodes stay exact)
+#: the finest virtual grid of a window (positions j/nodes exact; panel values finite up to 2^52)
 WINDOW_MAX_NODES = 2 ** 50
 #: the default accuracy target of the adaptive mesh
 DEFAULT_RTOL = 1e-6
@@ -607,11 +607,16 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
             window = _window_refine(res, grid, profile, material, speed, load, rtol, tol,
                                     max_outer, restart, max_inner)
             if window["reached"]:
-                levels.extend(window["levels"])
-                last = good = (window["res"], window["grid"])
-                estimate, reason, reached = window["estimate"], None, window["grid"].nodes
-                break
-            # the window did not reach the target: the periodic grids go on as without it
+                wres, wgrid = window["res"], window["grid"]
+                answer = build_result(wres, wgrid, profile, material, speed, amp, load,
+                                      levels + window["levels"], asked=asked, control=control,
+                                      error_estimate=window["estimate"], rtol=rtol,
+                                      extra_diagnostics={"window": window["summary"]})
+                if answer.success:
+                    return answer
+                window["summary"]["outcome"] = answer.message
+            # the window gave no answer: the periodic grids go on as without it
+            window["res"] = window["grid"] = None  # memory
     res, grid = last
     if nodes is None and reached is None and good is not None:
         # the finest converged grid, flagged: its estimate did not meet the target
@@ -669,10 +674,17 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
     out = {"reached": False, "res": None, "grid": None, "estimate": None, "levels": levels}
     note = "not converged"
     span = None
+    finest = nodes * (WINDOW_MAX_PANELS // n)
+    if finest > WINDOW_MAX_NODES or _unresolved_memory(material, speed, finest) > 0.0:
+        # a memory length below a few panels even on the finest window grid: the estimate
+        # would never be trusted (a speed near 0); the periodic grids go on
+        n = 2 * WINDOW_MAX_PANELS
+        note = "not tried: a memory length stays unresolved on the finest window grid"
     while n <= WINDOW_MAX_PANELS and nodes <= WINDOW_MAX_NODES:
         span = ((first + np.array([0, n - 1])) / nodes - 0.5, n)
         grid = _WindowGrid(profile, material, speed, nodes, first, n)
         grid.coarse = pgrid
+        grid.form_nodes = levels[0][0] if levels else nodes  # one friction form per window
         wres = _solve_one(grid, load, None, [start], tol, max_outer, restart, max_inner)
         levels.append((nodes, wres["nit"], tuple(wres["inner"]), wres["status"]))
         if wres["status"] != 0:
@@ -762,7 +774,7 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,
            "mu": tau_f / mean_p if mean_p > 0 else math.nan,
            # the gaps' round-off that the validity gate allows, over h (ROUNDOFF of the scale)
-           "gap_roundoff": ROUNDOFF * grid.scale / amp}
+           "gap_roundoff": ROUNDOFF * (grid.scale / amp)}
     if active.all():
         p = _full_patch(sigma, grid.y, profile, mean_p)
         out.update(contact_fraction=1.0, ka=math.pi, ke=None, ke_hat=p.ke_hat, npatch=1,

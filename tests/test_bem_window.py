@@ -80,7 +80,9 @@ def test_window_operator_is_the_dense_toeplitz_block():
 
 
 def _true(r, ref):
-    return {"mu": abs(r.mu / ref.mu - 1), "penetration": abs(r.penetration / ref.penetration - 1),
+    """True errors: relative for mu (absolute where it is 0: at rest) and Delta/h."""
+    mu = abs(r.mu / ref.mu - 1) if ref.mu != 0 else abs(r.mu)
+    return {"mu": mu, "penetration": abs(r.penetration / ref.penetration - 1),
             "ka": abs(r.ka - ref.ka), "ke": abs(r.ke - ref.ke)}
 
 
@@ -167,3 +169,54 @@ def test_the_light_honesty_sample_stays_inside_the_accepted_inputs():
     assert min(q) >= 1e-8 and max(q) <= 1e-4 and min(q) < 1e-7
     for p in pts:
         bem.validate(**p)
+
+
+def test_panel_values_stay_finite_on_the_finest_window_grids():
+    """The Taylor series of a panel value near its panel is summed in (eta cot u)^2 <= 1/9: on
+    grids of 2^37 panels and more its two factors eta^(2j) and cot^(2j) u would under- and
+    overflow (0 x inf)."""
+    off = np.linspace(-8.0, 8.0, 4001)
+    out = np.empty(off.size)
+    for e in (24, 30, 37, 40, 46, 50, 52):
+        nodes = 2 ** e
+        _kernels.panel_values(off / nodes, nodes, out)
+        assert np.all(np.isfinite(out)), e
+        # the panel's own value, (4/N)(1 - log(pi/N)), to its leading order
+        _kernels.panel_values(np.zeros(1), nodes, out[:1])
+        assert out[0] == pytest.approx(4.0 / nodes * (1.0 - math.log(math.pi / nodes)), rel=1e-9)
+
+
+@pytest.mark.parametrize("kw", [dict(load=1e-8, speed=0.0), dict(load=1e-8, speed=1e30),
+                                dict(load=1e-8, speed=1.0, ratio=1e4)],
+                         ids=["at-rest", "speed-1e30", "ratio-1e4"])
+def test_windows_at_the_ends_of_the_accepted_speeds_and_ratios(kw):
+    ref = analytic.solve(**kw)
+    r = bem.solve(**kw)
+    assert r.success, r.message
+    assert r.diagnostics["window"]["outcome"] == "target met"
+    for key, err in _true(r, ref).items():
+        assert err <= max(r.error_estimate[key], 1e-12), (key, err, r.error_estimate[key])
+
+
+def test_a_prony_window_agrees_with_the_periodic_grids(monkeypatch):
+    mat = MATERIALS["prony2"]
+    kw = dict(load=2e-5, speed=1.0, material=mat)
+    w = bem.solve(**kw)
+    assert w.success and w.diagnostics["window"]["outcome"] == "target met"
+    monkeypatch.setattr(_solver, "WINDOW_MAX_FRACTION", 0.0)
+    p = bem.solve(**kw)
+    assert p.success
+    for key in ("mu", "penetration"):
+        assert abs(getattr(w, key) / getattr(p, key) - 1) <= \
+            w.error_estimate[key] + p.error_estimate[key]
+    for key in ("ka", "ke"):
+        assert abs(getattr(w, key) - getattr(p, key)) <= \
+            w.error_estimate[key] + p.error_estimate[key]
+
+
+def test_no_window_where_a_memory_stays_unresolved():
+    """V/V0 = 1e-30: the memory length is below a panel of any window grid, so the estimate
+    would never be trusted there; the window is not tried and the periodic grids refuse."""
+    r = bem.solve(load=1e-7, speed=1e-30, max_nodes=2 ** 17)
+    assert not r.success and r.status == 5
+    assert r.diagnostics["window"]["outcome"].startswith("not tried")
