@@ -407,9 +407,11 @@ def _dot_window(column, sigma):
 
 def _window_fields(sigma, gap, active, s, grid):
     """Fields over the period of a contact-window solve (over h; pressure as solved): the
-    window's panels, and outside it the panels of its coarse periodic grid, whose displacement
-    is that of the window's pressure gathered onto them (load kept).  The coarse panels
-    within two of the window are left out (the gathering errs there)."""
+    window's panels, on each side as many more of its grid as make two panels of its coarse
+    periodic grid (no pressure there: their gaps come from the Toeplitz block of the wider
+    window, exact), and beyond, the coarse grid's panels, whose displacement is that of the
+    window's pressure gathered onto them (load kept; the gathering errs within two coarse
+    panels of the window, which the margin covers)."""
     cg = grid.coarse
     nc = cg.n
     x = grid.x
@@ -418,13 +420,19 @@ def _window_fields(sigma, gap, active, s, grid):
     uc = cg.op.apply(sc)
     gc = uc - cg.y + (grid.s_offset + s)
     xc = cg.x
-    lo, hi = x[0] - 2.0 * cg.h, x[-1] + 2.0 * cg.h
-    left, right = xc < lo, xc > hi
-    disp = grid.op.apply(sigma)
-    xs = np.concatenate((xc[left], x, xc[right]))
-    p = np.concatenate((np.zeros(int(left.sum())), sigma, np.zeros(int(right.sum()))))
-    u = np.concatenate((uc[left], disp, uc[right])) / grid.amp
-    g = np.concatenate((gc[left], np.where(active, 0.0, gap), gc[right])) / grid.amp
+    margin = int(math.ceil(2.0 * grid.nodes / nc)) + 1
+    ext = grid.extended(margin)
+    se = np.zeros(ext.n)
+    se[margin:margin + grid.n] = sigma
+    ue = ext.op.apply(se)
+    ge = ue - ext.y + s
+    ge[margin:margin + grid.n] = np.where(active, 0.0, gap)
+    xe = ext.x
+    left, right = xc < xe[0], xc > xe[-1]
+    xs = np.concatenate((xc[left], xe, xc[right]))
+    p = np.concatenate((np.zeros(int(left.sum())), se, np.zeros(int(right.sum()))))
+    u = np.concatenate((uc[left], ue, uc[right])) / grid.amp
+    g = np.concatenate((gc[left], ge, gc[right])) / grid.amp
     return xs, p, u, g
 
 

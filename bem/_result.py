@@ -211,8 +211,9 @@ class BemResult:
         x_over_lambda : array_like, optional
             Positions x/λ (any real values: the fields are periodic).  Default: the panel
             centres ``j/N − ½``, where the values are the solver's own (after a contact window:
-            the window's panels, and outside it the panels of its coarse periodic grid, whose
-            displacement is that of the window's pressure gathered onto them).  Elsewhere the four
+            the window's panels, a margin of its grid beyond each end, and outside that the
+            panels of its coarse periodic grid, whose displacement is that of the window's
+            pressure gathered onto them).  Elsewhere the four
             fields are interpolated linearly between panel centres, periodically (which keeps
             σ ≥ 0 and gap ≥ 0).
 

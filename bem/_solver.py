@@ -94,6 +94,7 @@ class _WindowGrid:
         self.n = count
         self.nodes = nodes
         self.first = first
+        self.profile, self.material, self.speed = profile, material, speed
         self.h = 1.0 / nodes
         self.op = WindowOperator(influence_coefficients_nd(
             material.j_plus, material.terms, speed, nodes, (-count, 2 * count + 1)),
@@ -107,6 +108,12 @@ class _WindowGrid:
     def x(self):
         """Panel centres X = (first + j)/nodes - 1/2 (exact: integers below 2^53)."""
         return (self.first + np.arange(self.n)) / self.nodes - 0.5
+
+    def extended(self, margin: int) -> "_WindowGrid":
+        """The same grid's window with `margin` more panels at each end (the gaps just beyond
+        the window, where no pressure is, for the validity gate and the fields)."""
+        return _WindowGrid(self.profile, self.material, self.speed, self.nodes,
+                           self.first - margin, self.n + 2 * margin)
 
 
 def _window_preconditioner(material: Prony, speed: float, count: int, nodes: int):
