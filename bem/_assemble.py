@@ -12,7 +12,6 @@ import math
 import numpy as np
 
 from . import _kernels
-from ._influence import window_memory_coefficients
 from ._inputs import Prony, Sinusoid, _direct
 from ._operator import WindowOperator
 from ._result import BemResult, Patch
@@ -374,30 +373,31 @@ def _window_friction(sigma, grid, material: Prony, speed: float):
     cancels between the two halves of the contact (at V/V0 = 100, p~ = 1e-8: mu is 4e-5 of
     each half).  At rest (``L_i = 0``) a term dissipates nothing.  A memory under 64 panels of
     the window's first grid (``grid.form_nodes``), which the midpoint rule does not resolve
-    (and where C - M_i cancels), makes the whole the direct form: exact for piecewise-constant pressure, ``k y(X + h/2) - k y(X - h/2) = -2 h k
-    sin(pi h) sin(2 pi X)``.
+    (and where C - M_i cancels), makes the whole the direct form
+    (:func:`_window_direct_friction`).  C and M_i are the columns the window's operator was
+    built from (``grid.columns``).
     """
-    n = grid.n
-    h = grid.h
-    offsets = np.arange(-n, n + 1) / grid.nodes
-    elastic = np.empty(offsets.size)
-    _kernels.panel_values(offsets, grid.nodes, elastic)
-    c_sigma = _dot_window(elastic, sigma)
+    c_sigma = None
     total = 0.0
     for j_i, tau_i in material.terms:
         length = speed * tau_i / _TWO_PI
         if j_i == 0.0 or length == 0.0:  # no memory (at rest: relaxed), no dissipation
             continue
-        if length < 64.0 / getattr(grid, "form_nodes", grid.nodes):
+        if length < 64.0 / grid.form_nodes:
             # a memory under 64 panels (of the window's first grid: one form for all its
-            # grids, whose differences make the estimate): the direct form
-            return grid.amp * math.sin(math.pi * h) / math.pi * \
-                float(np.dot(sigma, np.sin(_TWO_PI * grid.x)))
-        cache = grid.__dict__.setdefault("memory_columns", {})
-        if length not in cache:
-            cache[length] = window_memory_coefficients(grid.nodes, length, -n, 2 * n + 1)
-        total += (j_i / length) * (c_sigma - _dot_window(cache[length], sigma))
-    return h / _TWO_PI * total
+            # grids, whose differences make the estimate)
+            return _window_direct_friction(sigma, grid)
+        if c_sigma is None:
+            c_sigma = _dot_window(grid.columns["elastic"], sigma)
+        total += (j_i / length) * (c_sigma - _dot_window(grid.columns[length], sigma))
+    return grid.h / _TWO_PI * total
+
+
+def _window_direct_friction(sigma, grid):
+    """The direct form of tau_f on a contact window, -(1/2 pi) int sigma d(k y)/dX dX, exact
+    for piecewise-constant pressure: k y(X + h/2) - k y(X - h/2) = -2 h k sin(pi h) sin(2 pi X)."""
+    return grid.amp * math.sin(math.pi * grid.h) / math.pi * \
+        float(np.dot(sigma, np.sin(_TWO_PI * grid.x)))
 
 
 def _dot_window(column, sigma):
@@ -518,8 +518,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     smax = float(sigma.max()) if sigma.size else 0.0
     if grid.window:  # no spectrum of a window: the dissipation and the direct forms in real space
         tau_f = _window_friction(sigma, grid, material, speed)
-        tau_direct = grid.amp * math.sin(math.pi * grid.h) / math.pi * \
-            float(np.dot(sigma, np.sin(_TWO_PI * grid.x)))
+        tau_direct = _window_direct_friction(sigma, grid)
     else:
         tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
     residuals = {

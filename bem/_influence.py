@@ -282,7 +282,8 @@ def collocation_shift(h: float, length: float, j_local: float, j_i: float) -> fl
 
 
 def shifted_memory_coefficients(nodes: int, length: float, delta: float,
-                                span: tuple[int, int] | None = None) -> np.ndarray:
+                                span: tuple[int, int] | None = None,
+                                base: np.ndarray | None = None) -> np.ndarray:
     """Memory coefficients collocated ``delta`` downstream of the panel centres.
 
     ``(1/L) int_0^inf exp(-y/L) c(X_m - delta + y) dy = exp(-delta/L) M_m + (delta/L)
@@ -291,17 +292,19 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float,
     0.27 h``, ``delta/L <= 0.17``) the kinks of c at ``+-h/2`` stay at least 0.23 h from every
     interval of the second integral, whose length is at most 0.27 h: 16-point Gauss-Legendre
     with the weight folded in is exact to rounding.  ``span = (first, count)``: the signed
-    offsets of a window only (:func:`window_memory_coefficients`).
+    offsets of a window only (:func:`window_memory_coefficients`).  ``base``: the unshifted
+    coefficients, when already made.
     """
     if not 0.0 <= delta <= 0.3 / nodes:
         raise ValueError(f"delta={delta!r} is not allowed: a shift in [0, 0.3 h] "
                          "(collocation_shift gives at most 0.27 h)")
+    if base is None:
+        base = (memory_coefficients(nodes, length) if span is None
+                else window_memory_coefficients(nodes, length, *span))
     if span is None:
-        base = memory_coefficients(nodes, length)
         m = np.arange(nodes)
         offsets = np.where(m <= nodes // 2, m, m - nodes)
     else:
-        base = window_memory_coefficients(nodes, length, *span)
         offsets = np.arange(span[0], span[0] + span[1])
     if delta <= 0.0:
         return base
@@ -320,7 +323,8 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float,
 
 def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], ...],
                               speed: float, nodes: int,
-                              span: tuple[int, int] | None = None) -> np.ndarray:
+                              span: tuple[int, int] | None = None,
+                              parts: dict | None = None) -> np.ndarray:
     """First column of the circulant operator for a Prony creep function.
 
     Parameters
@@ -336,6 +340,10 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
     span : (first, count), optional
         Only the signed offsets ``first .. first + count - 1``, without making the grid (the
         Toeplitz operator of a contact window of a grid too fine to be made).
+    parts : dict, optional
+        Filled with the pieces made on the way: ``"elastic"`` (unit compliance) and, keyed by
+        its memory length, each Prony term's unshifted memory coefficients per unit J_i (what
+        the window's friction needs).
 
     Returns
     -------
@@ -347,6 +355,8 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
     else:
         base = np.empty(span[1])
         _kernels.panel_values(np.arange(span[0], span[0] + span[1]) / nodes, nodes, base)
+    if parts is not None:
+        parts["elastic"] = base
     total = j_plus * base
     h = 1.0 / nodes
     lengths = [speed * tau_i / (2.0 * np.pi) for _, tau_i in terms]
@@ -361,5 +371,11 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
         else:
             j_local = j_plus + sum(local) - local[i]
             delta = collocation_shift(h, length, j_local, j_i)
-            total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span)
+            unshifted = None
+            if parts is not None:
+                unshifted = parts[length] = (
+                    memory_coefficients(nodes, length) if span is None
+                    else window_memory_coefficients(nodes, length, *span))
+            total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span,
+                                                              unshifted)
     return total

@@ -96,9 +96,14 @@ class _WindowGrid:
         self.first = first
         self.profile, self.material, self.speed = profile, material, speed
         self.h = 1.0 / nodes
+        #: the operator's pieces, kept for the friction (elastic, unshifted memory columns)
+        self.columns = {}
         self.op = WindowOperator(influence_coefficients_nd(
-            material.j_plus, material.terms, speed, nodes, (-count, 2 * count + 1)),
-            _window_preconditioner(material, speed, count, nodes))
+            material.j_plus, material.terms, speed, nodes, (-count, 2 * count + 1),
+            self.columns), _window_preconditioner(material, speed, count, nodes))
+        #: the grid whose panels decide the friction's form (the window's first: one form for
+        #: all the grids whose differences make the estimate)
+        self.form_nodes = nodes
         self.amp = float(profile.amplitude)
         self.y = -2.0 * self.amp * np.sin(np.pi * self.x) ** 2
         self.s_offset = self.amp
@@ -128,8 +133,7 @@ def _window_preconditioner(material: Prony, speed: float, count: int, nodes: int
     period = 2.0 * count / nodes
     k = np.arange(count + 1, dtype=float)
     k[0] = 1.0
-    sym = period * (2.0 / k) * material.jstar(k / period, speed) * np.sinc(k / (2.0 * count))
-    return sym
+    return period * (2.0 / k) * material.jstar(k / period, speed) * np.sinc(k / (2.0 * count))
 
 
 def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
@@ -680,7 +684,7 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
     scalars, levels = [], []
     out = {"reached": False, "res": None, "grid": None, "estimate": None, "levels": levels}
     note = "not converged"
-    span = None
+    grid = None
     finest = nodes * (WINDOW_MAX_PANELS // n)
     if finest > WINDOW_MAX_NODES or _unresolved_memory(material, speed, finest) > 0.0:
         # a memory length below a few panels even on the finest window grid: the estimate
@@ -688,10 +692,10 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
         n = 2 * WINDOW_MAX_PANELS
         note = "not tried: a memory length stays unresolved on the finest window grid"
     while n <= WINDOW_MAX_PANELS and nodes <= WINDOW_MAX_NODES:
-        span = ((first + np.array([0, n - 1])) / nodes - 0.5, n)
         grid = _WindowGrid(profile, material, speed, nodes, first, n)
         grid.coarse = pgrid
-        grid.form_nodes = levels[0][0] if levels else nodes  # one friction form per window
+        if levels:
+            grid.form_nodes = levels[0][0]  # one friction form per window
         wres = _solve_one(grid, load, None, [start], tol, max_outer, restart, max_inner)
         levels.append((nodes, wres["nit"], tuple(wres["inner"]), wres["status"]))
         if wres["status"] != 0:
@@ -711,9 +715,10 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
             break
         start = (wres, grid)
         n, nodes, first = 2 * n, 2 * nodes, 2 * first
-    out["summary"] = {"from_x_over_lambda": float(span[0][0]) if span else None,
-                      "to_x_over_lambda": float(span[0][1]) if span else None,
-                      "panels": span[1] if span else 0, "coarse_nodes": pgrid.n,
+    ends = grid.x[[0, -1]] if grid is not None else (None, None)
+    out["summary"] = {"from_x_over_lambda": None if grid is None else float(ends[0]),
+                      "to_x_over_lambda": None if grid is None else float(ends[1]),
+                      "panels": 0 if grid is None else grid.n, "coarse_nodes": pgrid.n,
                       "outcome": note, "levels": [list(lv) for lv in levels]}
     return out
 

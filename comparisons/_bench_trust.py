@@ -110,11 +110,10 @@ def honesty(points=300, seed=20261123, nodes=4096, rtol=1e-6, workers=2, out=sys
     light-load sample); returns 0 when every target holds, 1 otherwise."""
     import functools
     pts = sample(points, seed, light)
-    box = dict(BOX)
     print(f"# Error estimates and the adaptive mesh against the semi-analytic road\n\n"
           f"{points} points, seed {seed}, log-uniform: " +
           ("load/hk {:g} … {:g}, ".format(*LIGHT_LOAD_OVER_HK) if light else "") +
-          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in box.items()
+          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in BOX.items()
                     if not (light and k == "load")) +
           f"; fixed mesh N = {nodes}; adaptive default rtol = {rtol:g}\n", file=out)
     print("point  load  speed  ratio  hk | fixed: success, true/estimate of mu, Δ/h, ka, ke | "
