@@ -570,6 +570,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     best = None      # (res, grid) of the finest converged grid
     estimate = None
     reason = None
+    note = None      # what the estimate carries for unresolved memory lengths
     reached = None
     failed = 0
     good = None      # (res, grid) of the finest converged grid
@@ -610,7 +611,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         failed = 0
         good = (res, grid)
         scalars.append((n, _level_scalars(res, grid, profile, material, speed, amp)))
-        estimate, reason = _estimate(scalars, material, speed)
+        estimate, reason, note = _estimate(scalars, material, speed)
         if nodes is None and reason is None and _met(estimate, scalars[-1][1], rtol):
             reached = n
             break
@@ -639,10 +640,10 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         stop = "max_nodes" if levels[-1][0] == max_nodes else f"refinement stopped at N={levels[-1][0]}"
         res["message"] = (f"accuracy target rtol={rtol:g} not reached (finest converged grid "
                           f"N={grid.n}, {stop}): {reason + '; ' if reason else ''}{shown}")
-    if nodes is not None and reason is not None and estimate is not None \
-            and not _memory_only(reason):
+    if nodes is not None and reason is not None:
         estimate = None  # the grids below a fixed one do not resolve the contact: no estimate
-    extra = {"estimate_note": reason} if reason else {}
+    shown_note = "; ".join(t for t in (reason, note) if t)
+    extra = {"estimate_note": shown_note} if shown_note else {}
     if window is not None:
         extra["window"] = window["summary"]
     return build_result(res, grid, profile, material, speed, amp, load, levels,
@@ -686,9 +687,10 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
     note = "not converged"
     grid = None
     finest = nodes * (WINDOW_MAX_PANELS // n)
-    if finest > WINDOW_MAX_NODES or _unresolved_memory(material, speed, finest) > 0.0:
-        # a memory length below a few panels even on the finest window grid: the estimate
-        # would never be trusted (a speed near 0); the periodic grids go on
+    if finest > WINDOW_MAX_NODES or \
+            ESTIMATE_SAFETY * _unresolved_memory(material, speed, finest) > rtol:
+        # the edge shift of the memory lengths the finest window grid leaves unresolved is
+        # above the target on its own (a speed near 0): the periodic grids go on
         n = 2 * WINDOW_MAX_PANELS
         note = "not tried: a memory length stays unresolved on the finest window grid"
     while n <= WINDOW_MAX_PANELS and nodes <= WINDOW_MAX_NODES:
@@ -706,7 +708,7 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
             note = f"{values['npatch']} patches in the window"
             break
         scalars.append((nodes, values))
-        estimate, reason = _estimate(scalars, material, speed)
+        estimate, reason, _ = _estimate(scalars, material, speed)
         out.update(res=wres, grid=grid, estimate=estimate)
         note = reason or "estimate above rtol"
         if reason is None and _met(estimate, values, rtol):
@@ -806,13 +808,25 @@ def _level_scalars(res, grid, profile, material, speed, amp):
 
 
 def _unresolved_memory(material, speed, nodes):
-    """Bound on the edge shift of the Prony terms whose memory length w tau_i/(2 pi) spans
-    fewer than MIN_MEMORY_PANELS panels of `nodes`: 0.5 (J_i/J0) w tau_i each (for the standard
-    linear solid (1 - 1/rho) w/2, the first-order retreat of the trailing edge at low speed)."""
+    """Bound on the contact-edge error of the Prony terms whose memory length
+    ``L_i = w tau_i/(2 pi)`` (wavelengths) spans fewer than MIN_MEMORY_PANELS panels of `nodes`.
+
+    A grid that does not resolve ``L_i`` misses the inner layer of the term at the contact
+    edges, whose effect on the edges is first order in ``L_i``: ``pi L_i J_i/(J_i + J_loc)`` on
+    ka and ke, with ``J_loc = J(0+) + sum of J_j over the terms of shorter memory`` (what acts at
+    once on the scale ``L_i``).  For the standard linear solid this is ``(1 - 1/rho) w/2``, the
+    first-order retreat of the trailing edge at low speed, which such a grid misses in full
+    (measured at L_i/h = 0.02-0.3).  A term whose memory is far below a panel adds a bound of the
+    order of its own length, which the estimate carries; it is not a reason to refine.
+    """
+    h = 1.0 / nodes
     bound = 0.0
-    for j, t in material.terms:
-        if j > 0.0 and speed * t * nodes / (2.0 * math.pi) < MIN_MEMORY_PANELS:
-            bound += 0.5 * (j / material.J0) * speed * t
+    j_loc = material.j_plus
+    for j, t in sorted(material.terms, key=lambda jt: jt[1]):
+        length = speed * t / (2.0 * math.pi)
+        if j > 0.0 and length < MIN_MEMORY_PANELS * h:
+            bound += math.pi * length * j / (j + j_loc)
+        j_loc += j
     return bound
 
 
@@ -827,23 +841,23 @@ def _estimate(scalars, material, speed):
     adds ESTIMATE_SAFETY times the validity gate's round-off of a gap (1e-12 h), below which no
     separation is certified (measured: 2.6e-13 h at Delta/h = 4.6e-4, where the grids agreed
     to 7e-14 h).  Returns
-    (estimate, reason), with reason None when the grids resolve the contact, else why the
-    estimate is not trusted yet (the estimate is then None or includes the unresolved memory
-    bound).
+    (estimate, reason, note): reason is None when the grids resolve the contact, else why the
+    estimate is not trusted yet; note says what the estimate includes for the memory lengths
+    the grids do not resolve (None when they resolve them all).
     """
     if len(scalars) < 3:
-        return None, "fewer than three converged grids"
+        return None, "fewer than three converged grids", None
     run = [scalars[-1]]
     for n, sc in reversed(scalars[:-1]):
         if len(run) == 4 or n * 2 != run[-1][0]:
             break
         run.append((n, sc))
     if len(run) < 3:
-        return None, "no three consecutive converged grids"
+        return None, "no three consecutive converged grids", None
     counts = {sc["npatch"] for _, sc in run}
     if len(counts) > 1:
         return None, ("the number of contact patches changes with N (" +
-                      ", ".join(str(sc["npatch"]) for _, sc in reversed(run)) + ")")
+                      ", ".join(str(sc["npatch"]) for _, sc in reversed(run)) + ")"), None
     est = {}
     for k in ESTIMATE_KEYS:
         vals = [sc[k] for _, sc in run]  # fine to coarse
@@ -870,20 +884,14 @@ def _estimate(scalars, material, speed):
         reason = f"a contact patch spans {a['min_panels']} panels at N={n0} " \
                  f"(at least {MIN_PATCH_PANELS} are needed)"
     shift = _unresolved_memory(material, speed, n0)
+    note = None
     if shift > 0.0:
         for k in est:
             if est[k] is not None:
                 est[k] += ESTIMATE_SAFETY * shift
-        if reason is None:
-            reason = (f"a memory length w tau_i/(2 pi) spans fewer than {MIN_MEMORY_PANELS:g} "
-                      f"panels at N={n0} (edge shift up to {shift:.1e} unresolved)")
-    return est, reason
-
-
-def _memory_only(reason):
-    """Whether the estimate's only caveat is an unresolved memory length (whose bound the
-    estimate then includes)."""
-    return reason.startswith("a memory length")
+        note = (f"a memory length w tau_i/(2 pi) spans fewer than {MIN_MEMORY_PANELS:g} "
+                f"panels at N={n0}: its edge shift, up to {shift:.1e}, is in the estimate")
+    return est, reason, note
 
 
 def _met(estimate, values, rtol):

@@ -219,11 +219,11 @@ def test_penetration_estimate_has_the_round_off_floor_of_the_separation():
     for pen in (0.5, 4.6e-4, 1e-7):
         sc = dict(penetration=pen, tau_f=0.1, mu=0.2, contact_fraction=0.3, ka=1.0, ke=0.1,
                   ke_hat=0.1, npatch=1, min_panels=1000, gap_roundoff=1e-12)
-        est, reason = S._estimate([(n, dict(sc)) for n in (1024, 2048, 4096)], sls, 1.0)
-        assert reason is None
+        est, reason, note = S._estimate([(n, dict(sc)) for n in (1024, 2048, 4096)], sls, 1.0)
+        assert reason is None and note is None
         assert est["penetration"] == pytest.approx(1.5e-12 / pen, rel=1e-12)
         assert est["mu"] == 0.0 and est["ka"] == 0.0
         # a contact window measures gaps from the crest: the floor is 1e-12 of its drop
         sc["gap_roundoff"] = 1e-12 * 3 * pen
-        est, _ = S._estimate([(n, dict(sc)) for n in (1024, 2048, 4096)], sls, 1.0)
+        est, _, _ = S._estimate([(n, dict(sc)) for n in (1024, 2048, 4096)], sls, 1.0)
         assert est["penetration"] == pytest.approx(1.5e-12 * 3, rel=1e-12)
