@@ -411,7 +411,10 @@ def _window_fields(sigma, gap, active, s, grid):
     periodic grid (no pressure there: their gaps come from the Toeplitz block of the wider
     window, exact), and beyond, the coarse grid's panels, whose displacement is that of the
     window's pressure gathered onto them (load kept; the gathering errs within two coarse
-    panels of the window, which the margin covers)."""
+    panels of the window, which the margin covers).  Also the cell edges of that non-uniform
+    grid (`viscosine.Fields`): each panel its own, but the coarse panel next to each end of the
+    wider window cut or stretched to meet it (coarse edges fall between fine centres), so that
+    the cells make the period and the window's panels keep their width 1/nodes."""
     cg = grid.coarse
     nc = cg.n
     x = grid.x
@@ -433,7 +436,12 @@ def _window_fields(sigma, gap, active, s, grid):
     p = np.concatenate((np.zeros(int(left.sum())), se, np.zeros(int(right.sum()))))
     u = np.concatenate((uc[left], ue, uc[right])) / grid.amp
     g = np.concatenate((gc[left], ge, gc[right])) / grid.amp
-    return xs, p, u, g
+    hc, hf = 1.0 / nc, 1.0 / grid.nodes
+    lower = np.concatenate((xc[left] - 0.5 * hc, xe - 0.5 * hf, xc[right] - 0.5 * hc))
+    if right.any():  # the first coarse cell after the window starts where the window ends
+        lower[int(left.sum()) + ext.n] = xe[-1] + 0.5 * hf
+    edges = np.append(lower, lower[0] + 1.0)  # the last cell closes the period
+    return xs, p, u, g, edges
 
 
 def _problems(sc, fields, load, asked_load, gap_roundoff=ROUNDOFF):
@@ -561,8 +569,9 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     elif 1.0 < penetration <= 1.0 + ROUNDOFF:
         penetration, separation = 1.0, 0.0  # s within rounding of 0 just below the transition
     if grid.window:
-        x_out, p_out, disp, gap_out = _window_fields(sigma, gap, active, s, grid)
+        x_out, p_out, disp, gap_out, edges = _window_fields(sigma, gap, active, s, grid)
     else:
+        edges = None  # the uniform grid of N panels
         x_out, p_out = grid.x, sigma
         disp = grid.op.apply(sigma) / amp
         gap_out = np.where(active, 0.0, gap) / amp
@@ -602,4 +611,4 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         control=control, asked=asked, ratio=ratio,
         hk=profile.hk if isinstance(profile, Sinusoid) else None,
         warnings=tuple(warnings), error_estimate=error_estimate, rtol=rtol,
-        extra_diagnostics=dict(extra_diagnostics or {}))
+        extra_diagnostics=dict(extra_diagnostics or {}), edges=edges)

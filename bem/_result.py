@@ -113,6 +113,10 @@ class BemResult:
         The accuracy target of an adaptive mesh; None when ``nodes`` fixed the mesh.
     extra_diagnostics : mapping
         Anything else the solver reports; part of ``diagnostics``.
+    edges : ndarray or None
+        The cell edges (x/λ) of the fields' grid when it is not uniform (after a contact
+        window: the window's panels and the coarse periodic panels, see `fields`); None for the
+        uniform grid of ``nodes`` panels.
     """
 
     success: bool
@@ -150,10 +154,13 @@ class BemResult:
     error_estimate: Mapping | None = None
     rtol: float | None = None
     extra_diagnostics: Mapping = field(default_factory=dict, repr=False)
+    edges: np.ndarray | None = field(default=None, repr=False)
 
     def __post_init__(self):
         for name in ("x_over_lambda", "pressure", "displacement", "gap"):
             object.__setattr__(self, name, _frozen_array(getattr(self, name)))
+        if self.edges is not None:
+            object.__setattr__(self, "edges", _frozen_array(self.edges))
         object.__setattr__(self, "residuals", MappingProxyType(dict(self.residuals)))
         object.__setattr__(self, "inner_iterations", tuple(int(i) for i in self.inner_iterations))
         object.__setattr__(self, "warnings", tuple(str(w) for w in self.warnings))
@@ -213,9 +220,11 @@ class BemResult:
             centres ``j/N − ½``, where the values are the solver's own (after a contact window:
             the window's panels, a margin of its grid beyond each end, and outside that the
             panels of its coarse periodic grid, whose displacement is that of the window's
-            pressure gathered onto them).  Elsewhere the four
-            fields are interpolated linearly between panel centres, periodically (which keeps
-            σ ≥ 0 and gap ≥ 0).
+            pressure gathered onto them; a non-uniform grid, whose Fields carry its cells, so
+            that `Fields.mean` and the other quadratures weigh each panel by its width).
+            Elsewhere the four fields are interpolated linearly between panel centres,
+            periodically (which keeps σ ≥ 0 and gap ≥ 0), and the Fields are point values
+            (uniform cells if the positions are a uniform grid of one period).
 
         Returns
         -------
@@ -223,7 +232,8 @@ class BemResult:
             σ(1 − ν²)/E_ref, v/h (from the mean line of the deformed surface) and gap/h.
         """
         if x_over_lambda is None:
-            return Fields(self.x_over_lambda, self.pressure, self.displacement, self.gap)
+            return Fields(self.x_over_lambda, self.pressure, self.displacement, self.gap,
+                          edges=self.edges)
         X = np.atleast_1d(np.asarray(x_over_lambda, dtype=float))
         if X.ndim != 1 or not np.all(np.isfinite(X)):
             raise ValueError(f"x_over_lambda={x_over_lambda!r} is not allowed: a 1-D array of "

@@ -10,6 +10,12 @@ printed as soon as it is done, so an interrupted run keeps what it finished):
   compared with the semi-analytic road: the true error of μ and Δ/h (relative) and of ka, ke
   (absolute) against the BEM's own ``error_estimate``; for the adaptive default, whether any
   answered point is off by more than 10 × rtol and how many points are refused.
+* ``front door`` (``--honesty --front-door``): the same sample, but each point goes the way of
+  ``python -m comparisons point --solver bem`` (`runner.resolve` → `runner.run`, the last line
+  of defence included) and the JSON record a user would see is judged: answered or refused, its
+  true errors against the semi-analytic road and its own ``error_estimate``.  For each answered
+  point it also says whether the gate as it was before the fields carried their cells (a plain
+  ``np.mean`` of the pressure column against the load, CONTROL_MISMATCH) would have refused it.
 * ``cost``: on the report's operating points, the time of the adaptive default against a
   fixed N = 4096 solve (median ratio).
 * ``memory``: the tracemalloc peak of one solve per panel at N = 2^20, and the largest N whose
@@ -197,6 +203,120 @@ def _summary(rows, rtol, out):
     for k, v in sorted(reasons.items(), key=lambda kv: -kv[1]):
         print(f"  - refused ({v}): {k}", file=out)
     good &= not over and len(refused) <= 0.02 * len(ad)
+    return 0 if good else 1
+
+
+def _record_errors(rec, ref):
+    """True errors of a JSON record against the semi-analytic ref (None where undefined)."""
+    out = {}
+    for key, rel in QUANTITIES:
+        a, b = rec.get(key), getattr(ref, key)
+        if a is None or b is None:
+            out[key] = None
+        elif rel:
+            out[key] = abs(a - b) / abs(b) if b != 0 else (0.0 if a == b else math.inf)
+        else:
+            out[key] = abs(a - b)
+    return out
+
+
+def front_door_point(point, rtol=None):
+    """One point the way ``python -m comparisons point --solver bem --fields F`` runs it (the
+    spec the command line builds, `runner.run` with its last line of defence), judged on the
+    JSON record printed, against the semi-analytic road (a plain dict)."""
+    import json
+
+    from . import runner
+    ref = analytic.solve(**point)
+    row = {"point": point, "reference": bool(ref.success)}
+    if not ref.success:
+        return row
+    spec = runner.resolve("bem", load=point["load"], speed=point["speed"], ratio=point["ratio"],
+                          hk=point["hk"], rtol=rtol, fields=True)
+    t0 = time.perf_counter()
+    res = runner.run(spec, fields=True, deep=True)
+    front = {"ok": bool(res["ok"]), "error": res["error"], "seconds": time.perf_counter() - t0}
+    if res["ok"]:
+        rec = json.loads(json.dumps(res["record"], allow_nan=False))  # what is printed
+        f = res["fields"]
+        old = abs(float(np.mean(f.pressure)) / rec["load"] - 1.0)  # the gate before the cells
+        front.update(nodes=rec["nodes"], errors=_record_errors(rec, ref),
+                     estimate=rec.get("error_estimate"), uniform=bool(f.uniform),
+                     old_mean_error=old, old_gate_refuses=old > runner.CONTROL_MISMATCH)
+    row["front"] = front
+    return row
+
+
+def front_door(points=50, seed=20261123, rtol=1e-6, workers=2, out=sys.stdout, light=False):
+    """The front-door study (see the module docstring); 0 when every point with a reference is
+    answered and every answered point is within 3 × its estimate and 10 × rtol, else 1."""
+    import functools
+    pts = sample(points, seed, light)
+    print(f"# Through the front door: `python -m comparisons point --solver bem` against the "
+          f"semi-analytic road\n\n{points} points, seed {seed}, log-uniform: " +
+          ("load/hk {:g} … {:g}, ".format(*LIGHT_LOAD_OVER_HK) if light else "") +
+          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in BOX.items()
+                    if not (light and k == "load")) +
+          f"; adaptive default rtol = {rtol:g}\n", file=out)
+    print("point  load  speed  ratio  hk | answered, N, grid, seconds | true/estimate of mu, "
+          "Δ/h, ka, ke | old gate: mean σ error, refuses?", file=out)
+    rows = []
+    fn = functools.partial(front_door_point, rtol=rtol)
+    for i, row in enumerate(_run(pts, fn, workers)):
+        rows.append(row)
+        p = row["point"]
+        head = f"{i:4d} {p['load']:.3g} {p['speed']:.3g} {p['ratio']:.4g} {p['hk']:.3g}"
+        if not row["reference"]:
+            print(head + " | semi-analytic road failed: point skipped", file=out, flush=True)
+            continue
+        f = row["front"]
+        if not f["ok"]:
+            print(f"{head} | refused [{(f['error'] or '')[:140]}]", file=out, flush=True)
+        else:
+            ratios = []
+            for key, _ in QUANTITIES:
+                e, s_ = f["errors"].get(key), (f["estimate"] or {}).get(key)
+                ratios.append("-" if e is None or s_ is None else f"{e / s_:.2g}" if s_ > 0
+                              else ("0" if e == 0 else "inf"))
+            print(f"{head} | yes {f['nodes']} {'uniform' if f['uniform'] else 'window'} "
+                  f"{f['seconds']:.2f} | {' '.join(ratios)} | {f['old_mean_error']:.1e} "
+                  f"{'REFUSES' if f['old_gate_refuses'] else 'passes'}", file=out, flush=True)
+        _progress(f"front door: {i + 1}/{points}")
+    ok = [r for r in rows if r["reference"]]
+    answered = [r["front"] for r in ok if r["front"]["ok"]]
+    before = [f for f in answered if not f["old_gate_refuses"]]
+    windows = [f for f in answered if not f["uniform"]]
+    print(f"\n## Answered through the front door ({len(ok)} points with a semi-analytic "
+          f"reference)\n", file=out)
+    print(f"- now: {len(answered)} of {len(ok)} answered ({len(windows)} of them on a contact "
+          f"window's non-uniform grid)", file=out)
+    print(f"- with the gate as it was (np.mean of the pressure column): {len(before)} of "
+          f"{len(ok)}; it refuses {len(answered) - len(before)} of today's answers, "
+          f"{sum(not f['uniform'] for f in answered if f['old_gate_refuses'])} of them windows",
+          file=out)
+    good = len(answered) == len(ok)
+    for key, _ in QUANTITIES:
+        pairs = [(f["errors"][key], (f["estimate"] or {}).get(key)) for f in answered
+                 if f["errors"].get(key) is not None and (f["estimate"] or {}).get(key) is not None]
+        if not pairs:
+            continue
+        below3 = sum(e <= 3 * s_ for e, s_ in pairs)
+        worst = max((e / s_ if s_ > 0 else (0.0 if e == 0 else math.inf)) for e, s_ in pairs)
+        worst_true = max(e for e, _ in pairs)
+        good &= below3 == len(pairs) and worst_true <= 10 * rtol
+        print(f"- {key}: {below3} of {len(pairs)} within 3 × the record's estimate, worst "
+              f"true/estimate {worst:.2g}, worst true error {worst_true:.1e}", file=out)
+    refused = {}
+    for r in ok:
+        if not r["front"]["ok"]:
+            k = (r["front"]["error"] or "").split(":")[0][:90]
+            refused[k] = refused.get(k, 0) + 1
+    for k, v in sorted(refused.items(), key=lambda kv: -kv[1]):
+        print(f"  - refused ({v}): {k}", file=out)
+    secs = [r["front"]["seconds"] for r in ok]
+    if secs:
+        print(f"- seconds per point: median {statistics.median(secs):.2f}, largest "
+              f"{max(secs):.1f}", file=out)
     return 0 if good else 1
 
 

@@ -129,6 +129,9 @@ def main(args):
     if getattr(args, "honesty", False):
         from . import _bench_trust
         seed = 20261123 if getattr(args, "seed", None) is None else args.seed
+        if getattr(args, "front_door", False):
+            return _bench_trust.front_door(50 if args.points is None else args.points, seed,
+                                           light=getattr(args, "light", False))
         return _bench_trust.honesty(300 if args.points is None else args.points, seed,
                                     light=getattr(args, "light", False))
     points = 1000 if args.points is None else args.points

@@ -8,7 +8,7 @@
                                 [--workers W | --scheduler ADDRESS] [--fields DIR]
     python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
-    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light]] [--max-log2n K]
+    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door]] [--max-log2n K]
     python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
 
 `point` prints one JSON object; `sweep` one per line, in order (loads outer, speeds inner); a
@@ -218,6 +218,10 @@ def add_bench_parser(sub):
                    help="seed of the --honesty sample (default 20261123)")
     p.add_argument("--light", action="store_true",
                    help="with --honesty: light loads, p~/hk log-uniform in 1e-8 … 1e-4")
+    p.add_argument("--front-door", action="store_true",
+                   help="with --honesty: each point through `point --solver bem` (the runner "
+                        "and its last line of defence), judging the printed record "
+                        "(default 50 points)")
     p.add_argument("--max-log2n", type=_integer, action=_Once, metavar="K",
                    help="largest BEM mesh 2^K of the BEM speed/memory table (default 20)")
     p.set_defaults(run=_cmd_bench)
@@ -377,8 +381,7 @@ def _cmd_point(args):
 def _write_fields(path, out, spec):
     f = out["fields"]
     try:
-        runner.write_fields_csv(path, f, runner.fields_header(out["record"], spec,
-                                                              f.x_over_lambda.size))
+        runner.write_fields_csv(path, f, runner.fields_header(out["record"], spec, f))
     except OSError as exc:
         raise Failed(f"cannot write --fields {path} ({exc.strerror or exc})") from None
 
@@ -504,6 +507,9 @@ def _cmd_bench(args):
         raise BadInput("--seed is not allowed without --honesty: it seeds that sample")
     if args.light and not args.honesty:
         raise BadInput("--light is not allowed without --honesty: it chooses that sample")
+    if args.front_door and not args.honesty:
+        raise BadInput("--front-door is not allowed without --honesty: it is a mode of that "
+                       "study")
     if args.honesty and args.max_log2n is not None:
         raise BadInput("--max-log2n is not allowed with --honesty: it sets the BEM tables")
     from . import bench

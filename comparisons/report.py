@@ -34,6 +34,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 import analytic
+from viscosine import Fields
 
 from . import _html, crosscheck, runner
 from .store import Store
@@ -491,15 +492,13 @@ def field_comparison(store, cfg):
         doc = _get(store, _bem(p, s, cfg.nodes), True)
         norms = None
         if doc:
-            f = doc["fields"]
-            a = sol.fields(f["x_over_lambda"])
-            dp = f["pressure"] - a.pressure
-            dv = f["displacement"] - a.displacement
-            pmax = np.max(np.abs(a.pressure))
-            norms = {"pressure_L2": float(np.sqrt(np.mean(dp ** 2)) / pmax),
-                     "pressure_Linf": float(np.max(np.abs(dp)) / pmax),
-                     "displacement_L2": float(np.sqrt(np.mean(dv ** 2))),
-                     "displacement_Linf": float(np.max(np.abs(dv)))}
+            f = Fields.from_columns(doc["fields"])  # the BEM grid, its cells weigh the norms
+            a = sol.fields(f.x_over_lambda)
+            dp = f.pressure - a.pressure
+            dv = f.displacement - a.displacement
+            pmax = a.linf("pressure")
+            norms = {"pressure_L2": f.l2(dp) / pmax, "pressure_Linf": f.linf(dp) / pmax,
+                     "displacement_L2": f.l2(dv), "displacement_Linf": f.linf(dv)}
         rows.append((label, p, s, sol, doc, norms))
     return rows
 
@@ -591,9 +590,9 @@ def convergence(store, cfg):
                 v = rec[k]
                 vals[k].append(np.nan if v is None else v)
                 data[k].append(np.nan if (v is None or ref[k] is None) else abs(v - ref[k]))
-            f = doc["fields"]
-            a = sol.fields(f["x_over_lambda"]).pressure
-            data["pressure"].append(float(np.sqrt(np.mean((f["pressure"] - a) ** 2)) / np.max(np.abs(a))))
+            f = Fields.from_columns(doc["fields"])
+            a = sol.fields(f.x_over_lambda)
+            data["pressure"].append(f.l2(f.pressure - a.pressure) / a.linf("pressure"))
         scale = {k: (ref[k] if k in ref and ref[k] is not None else 1.0) for k in data}
         orders = {k: fit_order(data["N"], data[k], scale[k]) for k in ("ka", "ke", "penetration", "mu", "pressure")}
         extrap = {k: richardson(data["N"], vals[k], orders[k]) for k in vals}

@@ -344,12 +344,14 @@ def _bem(spec, want_fields, deep):
     if not res.success:
         return Solved(rec, None, None)
     f = res.fields()
-    # the panel values are at hand: the constraints cost nothing on this road
+    # the panel values are at hand: the constraints cost nothing on this road.  The mean σ is
+    # the fields' own quadrature: after a contact window the grid is not uniform (fine window
+    # panels, coarse periodic ones), and each panel weighs its width
     smax = float(np.max(f.pressure)) if f.pressure.size else 0.0
     load = rec.get("load") or float(res.load)
     c = {"min_pressure": float(np.min(f.pressure)) / smax if smax > 0 else 0.0,
          "min_gap": float(np.min(f.gap)),
-         "mean_pressure_error": abs(float(np.mean(f.pressure)) / load - 1.0)}
+         "mean_pressure_error": abs(f.mean("pressure") / load - 1.0)}
     return Solved(rec, f if want_fields else None, c)
 
 
@@ -527,9 +529,14 @@ def _run_with_fields(spec):
 
 
 # ------------------------------------------------------------------------------ writing fields
-def fields_header(record, spec, n):
+def fields_header(record, spec, fields):
     """The leading ``#`` lines of a fields CSV: version, operating point (the inputs as given;
-    for the BEM the mesh actually used), points, units.  ASCII only, for any CSV reader."""
+    for the BEM the mesh actually used), points, grid, units.  ASCII only, for any CSV reader.
+
+    ``fields``: the `viscosine.Fields` written (or, for a uniform grid, its number of points).
+    """
+    n = fields if isinstance(fields, (int, np.integer)) else fields.x_over_lambda.size
+    uniform = isinstance(fields, (int, np.integer)) or fields.uniform
     point = {k: spec.get(k) for k in ("solver", "load", "penetration", "speed", "ratio", "hk")}
     if spec.get("solver") == "bem":
         point["nodes"] = record.get("nodes")       # the mesh used (after any refinement)
@@ -542,21 +549,40 @@ def fields_header(record, spec, n):
     for k in ("profile_file", "prony_file"):
         if record.get(k):
             lines.append(f"{k.replace('_file', '')}: {record[k]['path']} sha256={record[k]['sha256']}")
-    lines += [f"points: {n}",
+    lines += [f"points: {n}", GRID_UNIFORM if uniform else GRID_NON_UNIFORM,
               "units: x_over_lambda = x/lambda (crest at 0); pressure = sigma (1 - nu^2)/E0; "
               "displacement = v/h (into the body, from the mean line of the deformed surface); "
-              "gap = gap/h (0 in contact)"]
+              "gap = gap/h (0 in contact)" + ("" if uniform else "; width = x/lambda")]
     return lines
+
+
+#: the header line that states the grid of a fields CSV
+GRID_UNIFORM = ("grid: uniform, one cell of width 1/points per row; the mean over the period is "
+                "the mean of a column")
+GRID_NON_UNIFORM = ("grid: non-uniform (a contact window: fine panels around the contact, coarse "
+                    "ones elsewhere); column width = the row's cell, the cells consecutive in row "
+                    "order over one period, the first centred on its row; the mean over the "
+                    "period is sum(width * column)")
 
 
 def write_fields_csv(path, fields, header=()):
     """Write the fields (header ``#`` lines, the column line, one row per point) atomically.
 
-    The file is written under a name unique to this process and moved into place, so a reader
-    never sees half a file and two writers never share a temporary file.
+    ``fields``: a `viscosine.Fields` (or its columns, as `Fields.as_dict` gives them).  The
+    columns are ``x_over_lambda, pressure, displacement, gap`` and, on a non-uniform grid,
+    ``width`` (each row's cell, x/λ; the cells consecutive in row order over one period, the
+    first centred on its row: what `Fields.from_columns` reads back).  The file is written under
+    a name unique to this process and moved into place, so a reader never sees half a file and
+    two writers never share a temporary file.
     """
-    cols = ["x_over_lambda", "pressure", "displacement", "gap"]
-    data = fields.as_dict() if hasattr(fields, "as_dict") else fields
+    f = fields if isinstance(fields, Fields) else Fields.from_columns(fields)
+    data = f.as_dict()
+    cols = list(data)
+    if not f.uniform:  # the CSV gives widths only: its first cell must be centred on its row
+        w0 = float(f.edges[1] - f.edges[0])
+        if abs(f.edges[0] - (f.x_over_lambda[0] - 0.5 * w0)) > 1e-9 * w0:
+            raise ValueError("the first cell is not centred on its point: its edges cannot be "
+                             "written as widths")
     arrays = [np.asarray(data[c], dtype=float) for c in cols]
     folder, base = os.path.split(os.path.abspath(path))
     tmp = os.path.join(folder, f".{base}.{os.getpid()}.{secrets.token_hex(4)}.part")
@@ -571,3 +597,15 @@ def write_fields_csv(path, fields, header=()):
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def read_fields_csv(path) -> Fields:
+    """A fields CSV as written by `write_fields_csv` (``#`` lines skipped, columns by name):
+    a uniform grid without a ``width`` column, the cells it gives with one."""
+    with open(path, encoding="utf-8") as fh:
+        rows = [ln.strip() for ln in fh if ln.strip() and not ln.lstrip().startswith("#")]
+    if not rows:
+        raise ValueError(f"{path}: no header line")
+    head = [h.strip() for h in rows[0].split(",")]
+    data = np.array([r.split(",") for r in rows[1:]], dtype=float).reshape(-1, len(head))
+    return Fields.from_columns({h: data[:, i] for i, h in enumerate(head)})

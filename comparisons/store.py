@@ -7,7 +7,8 @@ one) and renamed into place, so an interrupted run loses nothing it has finished
 
 Reading back, every file is validated before it is used (`Store.problem`): the JSON must parse,
 hold the spec it is filed under, and — for a converged run — a record that passes the runner's
-physical checks; the .npz must hold the four fields as finite 1-D arrays of one length.  A
+physical checks; the .npz must hold the four fields as finite 1-D arrays of one length (and, for
+a non-uniform grid, their cell widths ``width``, making one period: `viscosine.Fields`).  A
 truncated, empty or garbage file is treated as missing: ``has`` notes it on standard error and
 the run is done again.
 """
@@ -20,6 +21,9 @@ import secrets
 import sys
 
 import numpy as np
+
+from viscosine import Fields
+from viscosine._fields import WIDTH  # the cells of a non-uniform grid (optional)
 
 from . import runner
 
@@ -121,8 +125,9 @@ class Store:
         if fields and out.get("fields") is not None:
             f = out["fields"]
             data = f.as_dict() if hasattr(f, "as_dict") else f
+            names = FIELD_NAMES + ((WIDTH,) if data.get(WIDTH) is not None else ())
             self._atomic(self._path(k, "npz"), lambda fh: np.savez(
-                fh, **{n: np.asarray(data[n], dtype=float) for n in FIELD_NAMES}), "wb")
+                fh, **{n: np.asarray(data[n], dtype=float) for n in names}), "wb")
         doc = {"spec": runner.public(spec), "ok": bool(out["ok"]), "record": out["record"],
                "error": out["error"], "seconds": out.get("seconds")}
         text = json.dumps(doc, allow_nan=False)
@@ -158,11 +163,16 @@ def _check_doc(doc, spec):
 
 
 def _check_fields(fields):
-    if set(fields) != set(FIELD_NAMES):
-        return f"fields {sorted(fields)} instead of {list(FIELD_NAMES)}"
-    arrays = [fields[n] for n in FIELD_NAMES]
+    if set(fields) - {WIDTH} != set(FIELD_NAMES):
+        return f"fields {sorted(fields)} instead of {list(FIELD_NAMES)} (and optionally {WIDTH})"
+    arrays = [fields[n] for n in sorted(fields)]
     if any(a.ndim != 1 for a in arrays) or len({a.size for a in arrays}) != 1 or arrays[0].size == 0:
         return "fields are not 1-D arrays of one length"
     if not all(np.issubdtype(a.dtype, np.floating) and np.all(np.isfinite(a)) for a in arrays):
         return "fields are not finite floats"
+    if WIDTH in fields:
+        try:
+            Fields.from_columns(fields)
+        except ValueError as exc:
+            return f"the cells of the fields do not make one period ({exc})"
     return None

@@ -314,8 +314,12 @@ def bem_solution(point, nodes, base=DATA, problem=None):
 
 
 def bem_fields(res):
-    """(x, pressure, displacement, gap) of a BEM result at its panel centres."""
+    """(x, pressure, displacement, gap) of a BEM result at its panel centres, on the uniform
+    grid of a fixed mesh (ValueError for a non-uniform one, whose cells these columns lose)."""
     f = res.fields() if callable(getattr(res, "fields", None)) else res
+    if not getattr(f, "uniform", True):
+        raise ValueError("the BEM fields are on a non-uniform grid (a contact window): "
+                         "solve on a fixed mesh (nodes=N) for panel centres j/N - 1/2")
     return (np.asarray(f.x_over_lambda, float), np.asarray(f.pressure, float),
             np.asarray(f.displacement, float), np.asarray(f.gap, float))
 
@@ -563,10 +567,10 @@ def compute(case, base=DATA, progress=None):
             failures.append(f"N = {n}: {r.message.splitlines()[0][:200]}")
         patches.append(patch_records(r, shape) if r.success else None)
         if n in nodes[-2:] and r.success:
-            x, p, v, g = bem_fields(r)
-            step = n // M
-            grid_fields[n] = {"x_over_lambda": x[::step], "pressure": p[::step],
-                              "displacement": v[::step], "gap": g[::step]}
+            # the stated grid's points are panel centres of N = n (a multiple of M): the
+            # linear resampling gives the panel values themselves, not averages
+            g = r.fields().resample(M, method="linear")
+            grid_fields[n] = {c: getattr(g, c) for c in ("x_over_lambda",) + FIELD_COLUMNS}
         if progress:
             progress(f"N = {n}: {'ok' if r.success else 'FAILED'} "
                      f"({time.perf_counter() - t0:.2f} s)")

@@ -13,23 +13,28 @@ Inputs
 - Fields CSV (``--fields``): a header line with the columns ``x_over_lambda, pressure`` and
   optionally ``displacement, gap`` (any order, other columns ignored), ``#`` comment lines allowed
   before it, one row per point of a uniform grid over one period (any offset, increasing x, the
-  end point not repeated).  Units of the conventions (pressure σ(1 − ν²)/E0, displacement v/h,
-  gap/h), or SI with ``--units SI`` (Pa, m, m) and ``--E0 --nu --amplitude`` to convert them.
-  Several files are results at several resolutions (N = the number of rows).
+  end point not repeated); or, with a ``width`` column, a non-uniform grid: each row's cell
+  width (x/λ), the cells consecutive in row order over one period, the first centred on its row
+  (the format ``python -m comparisons point --fields`` writes after a contact window).  Units of
+  the conventions (pressure σ(1 − ν²)/E0, displacement v/h, gap/h), or SI with ``--units SI``
+  (Pa, m, m) and ``--E0 --nu --amplitude`` to convert them.  Several files are results at
+  several resolutions (N = the number of rows).
 - Scalars (``--scalars``): JSON lines, one object per result, keyed like the conventions (``mu``,
   ``tau_f``, ``penetration``, ``separation``, ``load``, ``contact_fraction``, ``ka``, ``ke``,
   ``ke_hat``; conventions units), with ``nodes`` when there are several.
 - A callable (``--callable module:function`` or ``path/to/file.py:function``): called as
   ``function(point, nodes)`` for each ``--nodes`` with ``point`` the operating point (a dict:
   ``load`` or ``penetration``, ``speed``, and ``ratio``/``hk`` or absolute ``prony``/``profile``
-  file paths); it returns a :class:`viscosine.Fields`, a dict of arrays keyed like the CSV
-  columns, or an object with ``.fields`` (and optionally ``.scalars``, a dict).
+  file paths); it returns a :class:`viscosine.Fields` (its cells too, on a non-uniform grid), a
+  dict of arrays keyed like the CSV columns, or an object with ``.fields`` (and optionally
+  ``.scalars``, a dict).
   :func:`viscosine_bem` is such a callable (viscosine's own BEM).
 - ``--peer tamaas``: :mod:`comparisons.peers.tamaas` (imported only when asked for).
 
 Scalars from fields (documented, deterministic)
 -----------------------------------------------
-On the user's grid x_j (spacing 1/M):
+On the user's grid x_j (spacing 1/M), every mean the grid's own quadrature
+(`viscosine.Fields.mean`: the plain mean on a uniform grid, Σ width_j f_j on a non-uniform one):
 
 - load p̃∞ = mean σ_j (rectangle rule, exact for a trigonometric polynomial);
 - τ̃f = −(1/2π) mean σ_j (ky)′(x_j): eq. (3.1), τf = −(1/λ)∫σ ∂v/∂x dx, with ∂v/∂x = ∂y/∂x on
@@ -46,10 +51,12 @@ On the user's grid x_j (spacing 1/M):
   checked against all of them; too short for that, it does not count); the zeros that count
   are averaged; without any, the zeros of plain
   cubics over ~√M/16 … ~√M/2 (fewer points on short sides; with too few, σ² extrapolated
-  linearly from the last two contact points);
+  linearly from the last two contact points).  On a non-uniform grid the fit runs on the cells
+  of the edge's own width (1/M read as that width), up to the first cell of another width;
 - per patch: ka = π·width, ke = 2π(centre − summit), kê = 2π(centroid − summit) with the centroid
-  Σσ_j x_j/Σσ_j over the patch and the summit the highest profile point inside it (the crest 0 for
-  the sinusoid); with several patches the top-level ka, ke, kê are not defined;
+  Σw_jσ_j x_j/Σw_jσ_j over the patch (w_j the cell widths) and the summit the highest profile
+  point inside it (the crest 0 for the sinusoid); with several patches the top-level ka, ke, kê
+  are not defined;
 - full contact (every point in contact): ka = π, ke undefined, kê the phase by which the pressure
   leads the profile in the profile's dominant mode n: arg(ŷ_n/σ̂_n)/n.
 
@@ -57,8 +64,8 @@ Verdicts
 --------
 Each quantity is compared with the reference: relative difference for μ, τf, Δ/h, s/h, the load
 and the contact fraction; absolute for ka, ke, kê (radians) and the contact edges (x/λ);
-field norms over the user's grid: ``pressure_L2``, ``pressure_Linf`` (of σ − σ_ref, over
-max |σ_ref|) and ``displacement_L2``, ``displacement_Linf``, ``gap_Linf`` (of v/h, gap/h).  The
+field norms over the user's grid (L2 by its quadrature): ``pressure_L2``, ``pressure_Linf`` (of
+σ − σ_ref, over max |σ_ref|) and ``displacement_L2``, ``displacement_Linf``, ``gap_Linf`` (of v/h, gap/h).  The
 tolerance is ``--rtol`` (default 1e-4) for every quantity unless ``--tol NAME=VALUE`` sets it; a
 quantity passes when its difference is at most its tolerance.  The reference is the semi-analytic
 road where it applies (sinusoid on the standard linear solid), else the BEM (the suite's certified
@@ -96,6 +103,8 @@ from pathlib import Path
 import numpy as np
 
 from bem._assemble import edge_offset as _edge_offset
+from viscosine import Fields
+from viscosine._fields import UNIFORM_SPACING, WIDTH
 
 from . import suite as _suite
 
@@ -130,7 +139,9 @@ def _bad(option, value, problem, allowed=None):
 
 # =========================================================================== reading inputs
 FIELDS_ALLOWED = ("a UTF-8 CSV file, '#' comment lines, a header with x_over_lambda,pressure "
-                  "[,displacement,gap], then one row per point of a uniform grid over one period")
+                  "[,displacement,gap], then one row per point of a uniform grid over one period "
+                  "(or of any grid over one period with a width column: each row's cell, the "
+                  "cells consecutive, the first centred on its row)")
 
 
 def _text(path, option, allowed):
@@ -161,13 +172,14 @@ def parse_fields_csv(text, option="--fields", name="<text>") -> dict:
     Returns
     -------
     dict
-        ``x_over_lambda``, ``pressure`` and, when present, ``displacement`` and ``gap``.
+        ``x_over_lambda``, ``pressure`` and, when present, ``displacement``, ``gap`` and
+        ``width`` (the cells of a non-uniform grid).
 
     Raises
     ------
     BadInput
         Missing columns, non-numeric values, fewer than 8 rows, a grid that is not uniform over
-        one period.
+        one period (without widths) or whose cells do not make one period (with them).
     """
     lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
     if not lines:
@@ -176,7 +188,7 @@ def parse_fields_csv(text, option="--fields", name="<text>") -> dict:
     if "x_over_lambda" not in head or "pressure" not in head:
         raise _bad(option, name, f"the columns x_over_lambda and pressure are required "
                    f"(found: {', '.join(head)})", FIELDS_ALLOWED)
-    cols = {c: head.index(c) for c in ("x_over_lambda", "pressure", "displacement", "gap")
+    cols = {c: head.index(c) for c in ("x_over_lambda", "pressure", "displacement", "gap", WIDTH)
             if c in head}
     rows = []
     for i, ln in enumerate(lines[1:], 2):
@@ -195,20 +207,30 @@ def parse_fields_csv(text, option="--fields", name="<text>") -> dict:
     if not np.all(np.isfinite(data)):
         raise _bad(option, name, "non-finite values (nan or inf)", "finite numbers")
     out = {c: data[:, k] for k, c in enumerate(cols)}
-    check_grid(out["x_over_lambda"], option, name)
+    check_grid(out["x_over_lambda"], option, name, out.get(WIDTH))
     return out
 
 
-def check_grid(x, option="--fields", name="<fields>"):
-    """BadInput unless x is increasing and uniform over exactly one period (end not repeated)."""
+def check_grid(x, option="--fields", name="<fields>", widths=None):
+    """BadInput unless x is increasing and uniform over exactly one period (end not repeated),
+    or, with ``widths``, the cells they give make one period with each point in its own."""
     x = np.asarray(x, float)
+    if widths is not None:
+        z = np.zeros(x.size)
+        try:
+            Fields(x, z, z, z, widths=widths)
+        except ValueError as exc:
+            raise _bad(option, name, f"the width column does not describe the grid ({exc})",
+                       "cells consecutive in row order over one period, the first centred on "
+                       "its row, each point in its cell") from None
+        return
     m = x.size
     dx = np.diff(x)
     spread = float(np.max(np.abs(dx * m - 1.0))) if m > 1 else math.inf
     if abs(x[-1] - x[0] - 1.0) < 1e-9:
         raise _bad(option, name, "the end point of the period is repeated",
                    "one period, x_last = x_first + 1 − 1/M (drop the last row)")
-    if not spread < 1e-6:
+    if not spread < UNIFORM_SPACING:
         raise _bad(option, name, f"x_over_lambda is not a uniform grid over one period "
                    f"(spacing × M − 1 reaches {spread:.2e})",
                    "x_j = x_0 + j/M, j = 0..M−1, increasing")
@@ -359,14 +381,30 @@ def _runs(mask):
             for f, l in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
 
 
+def _grid(fields) -> Fields:
+    """The `viscosine.Fields` of a fields dict, for its quadrature (a column it lacks is zeros
+    there: only what the dict holds is ever read from it)."""
+    x = np.asarray(fields["x_over_lambda"], float)
+    z = np.zeros(x.size)
+    cols = [fields.get(c) for c in ("pressure", "displacement", "gap")]
+    return Fields(x, *(z if a is None else a for a in cols), widths=fields.get(WIDTH))
+
+
+def _same_width(idx, w, h):
+    """The leading indices of ``idx`` whose cells have the width h (the edge fit's spacing)."""
+    same = np.abs(w[idx] - h) <= 1e-9 * h
+    return idx if same.all() else idx[:int(np.argmin(same))]
+
+
 def scalars_from_fields(fields, shape):
-    """Scalars and contact patches computed from fields on a uniform periodic grid.
+    """Scalars and contact patches computed from fields over one period.
 
     Parameters
     ----------
     fields : dict
         ``x_over_lambda``, ``pressure`` and optionally ``displacement``, ``gap`` (conventions
-        units; x uniform over one period, increasing).
+        units; x uniform over one period, increasing) and ``width`` (the cells of a non-uniform
+        grid; see the module docstring).
     shape : comparisons.suite.ProfileShape
         The indenter (k·y and its slope anywhere).
 
@@ -378,26 +416,31 @@ def scalars_from_fields(fields, shape):
         ``centroid``, ``summit``, ``ka``, ``ke``, ``ke_hat``).  The method is in the module
         docstring.
     """
-    x = np.asarray(fields["x_over_lambda"], float)
-    p = np.asarray(fields["pressure"], float)
+    grid = _grid(fields)
+    uniform = grid.uniform
+    x = grid.x_over_lambda
+    p = grid.pressure
     v = fields.get("displacement")
     g = fields.get("gap")
     m = x.size
     h = 1.0 / m
+    w_cells = grid.widths
     pmax = float(np.max(p))
     out = {}
-    load = float(np.mean(p))
+    load = grid.mean("pressure")
     out["load"] = load
-    tau = -float(np.mean(p * shape(x, 1))) / (2.0 * math.pi)
+    tau = -grid.mean(p * shape(x, 1)) / (2.0 * math.pi)
     out["tau_f"] = tau
     if load != 0.0:
         out["mu"] = tau / load
     contact = p > CONTACT * pmax if pmax > 0.0 else np.zeros(m, bool)
     hk = shape.amplitude
     if g is not None:
-        sep = float(np.mean(g))
+        sep = grid.mean("gap")
     elif v is not None and contact.any():
-        sep = float(np.mean((shape(x) / hk - np.asarray(v, float))[contact]))
+        rest = (shape(x) / hk - np.asarray(v, float))[contact]
+        sep = (float(np.mean(rest)) if uniform else  # the mean over the contact's own cells
+               float(np.sum(w_cells[contact] * rest) / np.sum(w_cells[contact])))
     else:
         sep = None
     if sep is not None:
@@ -408,10 +451,17 @@ def scalars_from_fields(fields, shape):
     patches = []
     if full:
         out.update(ka=math.pi, contact_fraction=1.0)
-        yh = np.fft.rfft(shape(x))
-        sh = np.fft.rfft(p)
-        n = int(np.argmax(np.abs(yh[1:]))) + 1
-        out["ke_hat"] = float(np.angle(yh[n] / sh[n])) / n
+        if uniform:
+            yh = np.fft.rfft(shape(x))
+            sh = np.fft.rfft(p)
+            n = int(np.argmax(np.abs(yh[1:]))) + 1
+            out["ke_hat"] = float(np.angle(yh[n] / sh[n])) / n
+        else:  # the dominant mode of the profile, then both coefficients by the grid's quadrature
+            n = int(np.argmax(np.abs(np.fft.rfft(shape(np.arange(4096) / 4096 - 0.5))[1:]))) + 1
+            phase = np.exp(-2j * math.pi * n * x)
+            yn = np.sum(w_cells * shape(x) * phase)
+            sn = np.sum(w_cells * p * phase)
+            out["ke_hat"] = float(np.angle(yn / sn)) / n
         return out, patches
     runs = _runs(contact)
     for i, (first, length) in enumerate(runs):
@@ -423,21 +473,37 @@ def scalars_from_fields(fields, shape):
             free_after = free_before = m - length
         half = (length - 1) // 2 + 1
         last = first + length - 1
-        ins_lead = p[(last - np.arange(half)) % m] ** 2
-        ins_trail = p[(first + np.arange(half)) % m] ** 2
+        i_lead = (last - np.arange(half)) % m
+        i_trail = (first + np.arange(half)) % m
+        o_lead = (last + 1 + np.arange(free_after // 2)) % m
+        o_trail = (first - 1 - np.arange(free_before // 2)) % m
+        h_lead = h_trail = h
+        m_lead = m_trail = m
+        if not uniform:  # each edge is fitted on the cells of its own width, read as 1/M
+            h_lead, h_trail = float(w_cells[last % m]), float(w_cells[first])
+            m_lead, m_trail = int(round(1.0 / h_lead)), int(round(1.0 / h_trail))
+            i_lead, o_lead = (_same_width(i, w_cells, h_lead) for i in (i_lead, o_lead))
+            i_trail, o_trail = (_same_width(i, w_cells, h_trail) for i in (i_trail, o_trail))
+        ins_lead = p[i_lead] ** 2
+        ins_trail = p[i_trail] ** 2
         if g is not None:
             ga = np.abs(np.asarray(g, float))
-            out_lead = ga[(last + 1 + np.arange(free_after // 2)) % m] ** (2.0 / 3.0)
-            out_trail = ga[(first - 1 - np.arange(free_before // 2)) % m] ** (2.0 / 3.0)
+            out_lead = ga[o_lead] ** (2.0 / 3.0)
+            out_trail = ga[o_trail] ** (2.0 / 3.0)
         else:
             out_lead = out_trail = np.zeros(0)
         x_first = x[first]
-        x_last = x_first + (length - 1) * h  # unwrapped across the end of the period
-        lead = x_last + _edge_offset(ins_lead, out_lead, h, m)
-        trail = x_first - _edge_offset(ins_trail, out_trail, h, m)
         ids = (first + np.arange(length)) % m
-        xs = x_first + h * np.arange(length)
-        w = p[ids]
+        if uniform:
+            x_last = x_first + (length - 1) * h  # unwrapped across the end of the period
+            xs = x_first + h * np.arange(length)
+            w = p[ids]
+        else:
+            xs = x_first + np.mod(x[ids] - x_first, 1.0)
+            x_last = float(xs[-1])
+            w = p[ids] * w_cells[ids] * m  # the pressures weighed by their cells (over 1/M)
+        lead = x_last + _edge_offset(ins_lead, out_lead, h_lead, m_lead)
+        trail = x_first - _edge_offset(ins_trail, out_trail, h_trail, m_trail)
         centroid = float(np.dot(w, xs) / w.sum()) if w.sum() > 0 else 0.5 * (trail + lead)
         summit = shape.summit(trail, lead)
         shift = -math.floor(0.5 * (trail + lead) - summit + 0.5)
@@ -589,6 +655,8 @@ def _as_fields(obj, option, label):
         f = f()
     if isinstance(f, dict):
         d = {k: np.asarray(v, float) for k, v in f.items() if v is not None}
+    elif isinstance(f, Fields):
+        d = {k: np.asarray(v, float) for k, v in f.as_dict().items()}  # with its cells
     else:
         d = {}
         for k in ("x_over_lambda", "pressure", "displacement", "gap"):
@@ -602,7 +670,7 @@ def _as_fields(obj, option, label):
     if any(a.shape != (n,) for a in d.values()) or n < MIN_POINTS:
         raise _bad(option, label, "returned columns of different lengths or too few points",
                    f"1-D arrays of one length >= {MIN_POINTS}")
-    check_grid(d["x_over_lambda"], option, label)
+    check_grid(d["x_over_lambda"], option, label, d.get(WIDTH))
     return d
 
 
@@ -695,23 +763,24 @@ def norms(result: Result, reference: Reference):
     if result.fields is None:
         return {}, {}, None
     f = result.fields
+    grid = _grid(f)  # the norms weigh each point by its cell
     ref, unc = reference.fields(f["x_over_lambda"])
     pm = float(np.max(np.abs(ref["pressure"])))
     out, out_unc = {}, {}
     dp = f["pressure"] - ref["pressure"]
-    out["pressure_L2"] = float(np.sqrt(np.mean(dp ** 2))) / pm
-    out["pressure_Linf"] = float(np.max(np.abs(dp))) / pm
-    out_unc["pressure_L2"] = float(np.sqrt(np.mean(unc["pressure"] ** 2))) / pm
-    out_unc["pressure_Linf"] = float(np.max(unc["pressure"])) / pm
+    out["pressure_L2"] = grid.l2(dp) / pm
+    out["pressure_Linf"] = grid.linf(dp) / pm
+    out_unc["pressure_L2"] = grid.l2(unc["pressure"]) / pm
+    out_unc["pressure_Linf"] = grid.linf(unc["pressure"]) / pm
     if "displacement" in f:
         dv = f["displacement"] - ref["displacement"]
-        out["displacement_L2"] = float(np.sqrt(np.mean(dv ** 2)))
-        out["displacement_Linf"] = float(np.max(np.abs(dv)))
-        out_unc["displacement_L2"] = float(np.sqrt(np.mean(unc["displacement"] ** 2)))
-        out_unc["displacement_Linf"] = float(np.max(unc["displacement"]))
+        out["displacement_L2"] = grid.l2(dv)
+        out["displacement_Linf"] = grid.linf(dv)
+        out_unc["displacement_L2"] = grid.l2(unc["displacement"])
+        out_unc["displacement_Linf"] = grid.linf(unc["displacement"])
     if "gap" in f:
-        out["gap_Linf"] = float(np.max(np.abs(f["gap"] - ref["gap"])))
-        out_unc["gap_Linf"] = float(np.max(unc["gap"]))
+        out["gap_Linf"] = grid.linf(f["gap"] - ref["gap"])
+        out_unc["gap_Linf"] = grid.linf(unc["gap"])
     return out, out_unc, ref
 
 
@@ -735,6 +804,8 @@ def derivation_floor(result: Result, reference: Reference):
     ref, _ = reference.fields(x)
     f = {"x_over_lambda": x, **{k: ref[k] for k in ("pressure", "displacement", "gap")
                                  if k in result.fields}}
+    if WIDTH in result.fields:  # the same cells
+        f[WIDTH] = result.fields[WIDTH]
     sc, patches = scalars_from_fields(f, reference.shape)
     out = {}
     for k in SCALAR_KEYS:

@@ -135,7 +135,8 @@ class SIResult:
         X = None if x is None else np.asarray(x, dtype=float) / self.wavelength
         f = self.solution.fields(X)
         return Fields(f.x_over_lambda, f.pressure * self.plane_strain_modulus,
-                      f.displacement * self.amplitude, f.gap * self.amplitude, units="SI")
+                      f.displacement * self.amplitude, f.gap * self.amplitude, units="SI",
+                      edges=f.edges)
 
 
 def result(sol, sc: SIScales, *, full_contact_load=None, threshold_speed=None) -> SIResult:
