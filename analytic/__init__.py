@@ -17,8 +17,9 @@ from viscosine import Fields
 from ._accepted import ACCEPTED, validate
 from ._result import Patch, Solution
 from .dimensional import solve_si
+from .fourier import fourier_solve
 from .full_contact import modulus, threshold_speed, transition_load
 from .solver import solve, sweep
 
-__all__ = ["ACCEPTED", "Fields", "Patch", "Solution", "modulus", "solve", "solve_si", "sweep",
-           "threshold_speed", "transition_load", "validate"]
+__all__ = ["ACCEPTED", "Fields", "Patch", "Solution", "fourier_solve", "modulus", "solve",
+           "solve_si", "sweep", "threshold_speed", "transition_load", "validate"]
