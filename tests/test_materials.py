@@ -153,12 +153,12 @@ def test_modulus_signs_limits_and_extremes():
     assert m.relaxation(1e300) == m.E_r
 
 
-def test_forty_term_conversion_is_fast():
-    import time
+def test_forty_term_conversion_round_trips():
+    """40 terms over 20 decades (its cost, about 3 ms, is a benchmark figure, not a test)."""
     m = Maxwell(1.0, np.linspace(10.0, 100.0, 40), np.logspace(-10, 10, 40))
-    start = time.perf_counter()
-    m.creep()
-    assert time.perf_counter() - start < 1.0  # a few ms measured; generous for slow runners
+    c = m.creep()
+    w = np.logspace(-12, 12, 97)
+    np.testing.assert_allclose(m.modulus(w) * c.compliance(w), 1.0, rtol=1e-12)
 
 
 @pytest.mark.parametrize("make, pattern", [
