@@ -110,18 +110,22 @@ def _fmt(v):
     return "-" if v is None else f"{v:.1e}"
 
 
+def _describe(points, seed, light):
+    """The sample, as the studies' headers state it."""
+    return (f"{points} points, seed {seed}, log-uniform: " +
+            ("load/hk {:g} … {:g}, ".format(*LIGHT_LOAD_OVER_HK) if light else "") +
+            ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in BOX.items()
+                      if not (light and k == "load")))
+
+
 def honesty(points=300, seed=20261123, nodes=4096, rtol=1e-6, workers=2, out=sys.stdout,
             light=False):
     """The honesty study and the adaptive study on one random sample (with `light`, the
     light-load sample); returns 0 when every target holds, 1 otherwise."""
     import functools
     pts = sample(points, seed, light)
-    print(f"# Error estimates and the adaptive mesh against the semi-analytic road\n\n"
-          f"{points} points, seed {seed}, log-uniform: " +
-          ("load/hk {:g} … {:g}, ".format(*LIGHT_LOAD_OVER_HK) if light else "") +
-          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in BOX.items()
-                    if not (light and k == "load")) +
-          f"; fixed mesh N = {nodes}; adaptive default rtol = {rtol:g}\n", file=out)
+    print(f"# Error estimates and the adaptive mesh against the semi-analytic road\n\n" +
+          _describe(points, seed, light) + f"; fixed mesh N = {nodes}; adaptive default rtol = {rtol:g}\n", file=out)
     print("point  load  speed  ratio  hk | fixed: success, true/estimate of mu, Δ/h, ka, ke | "
           "adaptive: success, N, seconds, true errors of mu, Δ/h, ka, ke", file=out)
     rows = []
@@ -253,11 +257,7 @@ def front_door(points=50, seed=20261123, rtol=1e-6, workers=2, out=sys.stdout, l
     import functools
     pts = sample(points, seed, light)
     print(f"# Through the front door: `python -m comparisons point --solver bem` against the "
-          f"semi-analytic road\n\n{points} points, seed {seed}, log-uniform: " +
-          ("load/hk {:g} … {:g}, ".format(*LIGHT_LOAD_OVER_HK) if light else "") +
-          ", ".join(f"{k} {lo:g} … {hi:g}" for k, (lo, hi) in BOX.items()
-                    if not (light and k == "load")) +
-          f"; adaptive default rtol = {rtol:g}\n", file=out)
+          f"semi-analytic road\n\n" + _describe(points, seed, light) + f"; adaptive default rtol = {rtol:g}\n", file=out)
     print("point  load  speed  ratio  hk | answered, N, grid, seconds | true/estimate of mu, "
           "Δ/h, ka, ke | old gate: mean σ error, refuses?", file=out)
     rows = []
