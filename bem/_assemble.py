@@ -58,7 +58,7 @@ def _root_near_zero(pos, vals, deg):
     return float(roots[np.argmin(np.abs(roots))])
 
 
-def edge_offset(inside_sq, outside_23, h, nodes):
+def edge_offset(inside_sq, outside_23, h, nodes, lags=(0.0, 0.0)):
     """Offset of a contact edge beyond the centre of the last contact panel.
 
     inside_sq[m] = sigma^2 at the m-th contact panel counted inward from the edge
@@ -80,15 +80,18 @@ def edge_offset(inside_sq, outside_23, h, nodes):
     the next edge is fitted over the first half of its panels and checked against all of them
     (never on two windows that hold the same panels); too short for that, it does not count.
     The zeros of the sides that count are averaged; with none, the plain fit is the answer.
+    ``lags = (inside, outside)``: what each side's fit places the edge beyond the true one,
+    subtracted from its zero (`edge_lags`: memory far shorter than the fitted distances).
     On Westergaard's solution the error of ka then falls smoothly (RMS 5e-9 at N = 2^16,
     observed order 1.7-1.8 over N = 2^12 .. 2^16), where the plain fit's error scatters by a
     factor of ten from one N to the next (1e-7 to 2e-7 at 2^16).
     """
-    base = edge_offset_plain(inside_sq, outside_23, h, nodes)
+    base = edge_offset_plain(inside_sq, outside_23, h, nodes, lags)
     m1 = max(1, int(round(math.sqrt(nodes) / 16.0)))
     m2 = max(m1 + TAIL_FIT_DEGREE + 4, int(round(math.sqrt(nodes) / 4.0)))
     est = []
-    for vals, sign, shift in ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0)):
+    for vals, sign, shift, lag in ((inside_sq, -1.0, 0.0, lags[0]),
+                                   (outside_23, 1.0, 1.0, lags[1])):
         # a side cut short by the next edge is checked on the windows it holds (the wide one
         # twice the narrow one), never on two windows holding the same panels
         mm = min(m2, (vals.size - 1) // 2)
@@ -96,7 +99,7 @@ def edge_offset(inside_sq, outside_23, h, nodes):
         wide = _tail_fit_root(vals, sign, shift, m1, 2 * mm, base, h)
         if root is not None and wide is not None and \
                 abs(root - wide) <= EDGE_WINDOW_AGREEMENT * h:
-            est.append(root)
+            est.append(root - lag)
     return sum(est) / len(est) if est else base
 
 
@@ -169,7 +172,50 @@ def _cubic_zero_near(c, x):
     return float(roots[np.argmin(np.abs(roots - x0))]) if roots.size else None
 
 
-def edge_offset_plain(inside_sq, outside_23, h, nodes):
+#: a Prony term whose memory length is at most this fraction of the nearest fitted distance
+#: (sqrt(N)/16 panels) counts in `edge_lags` (measured on the standard linear solid at N = 4096
+#: and 16384: the fits' zeros move by whole multiples of the lag up to 0.1, not beyond 0.15)
+LAG_FRACTION = 0.1
+
+
+def edge_lag_reach(h, panels):
+    """The longest memory length (wavelengths) that `edge_lags` counts on panels of width h."""
+    return LAG_FRACTION * max(1, int(round(math.sqrt(panels) / 16.0))) * h
+
+
+def edge_lags(material, speed, h, panels):
+    """How far the edge fits of `edge_offset` place a contact edge beyond the true one, for the
+    Prony terms whose memory length ``L_i = w tau_i/(2 pi)`` (wavelengths) is far below the
+    distances fitted (LAG_FRACTION of sqrt(panels)/16 panels of width h).
+
+    On scales much longer than ``L_i`` such a term acts as a compliance ``J_i`` applied a
+    distance ``L_i`` downstream.  To first order the operator is then an elastic one with the
+    compliance ``J_s = J(0+) + sum J_i`` shifted by ``delta = sum J_i L_i / J_s`` (sums over
+    those terms): the gap outside a contact is the elastic one, and the pressure is the elastic
+    one moved ``delta`` toward +x.  The true edges lie between: the trailing edge ``delta``
+    inside the gap's, the leading edge ``delta`` inside the pressure's (their inner layers of
+    width ``L_i``; for the standard linear solid at V -> 0 this is the paper's first-order
+    retreat of the trailing edge, ka = ka_W - (1 - 1/rho) w/2 and ke = (1 - 1/rho) w/2).  A fit
+    far outside those layers finds the outer fields' zeros: each side that carries the lag is
+    corrected by ``delta``.  Returns ``delta`` (wavelengths).
+
+    References
+    ----------
+    Eqs (2.4)-(2.5) of the paper (the steady-sliding kernel) and its low-speed limit (§3).
+    """
+    reach = edge_lag_reach(h, panels)
+    j_s = material.j_plus
+    moment = 0.0
+    for j, t in sorted(material.terms, key=lambda jt: jt[1]):
+        length = speed * t / _TWO_PI
+        if length > reach:
+            break
+        j_s += j
+        moment += j * length
+    return moment / j_s if moment > 0.0 else 0.0
+
+
+def edge_offset_plain(inside_sq, outside_23, h, nodes, lags=(0.0, 0.0)):
     """The edge offset of `edge_offset` from plain polynomial fits (its start).
 
     The panels right at the edge carry an O(1) relative discretisation error that does not
@@ -182,7 +228,8 @@ def edge_offset_plain(inside_sq, outside_23, h, nodes):
     m1 = max(1, int(round(math.sqrt(nodes) / 16.0)))
     m2 = max(m1 + 6, int(round(math.sqrt(nodes) / 2.0)))
     est = []
-    for vals, sign, shift in ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0)):
+    for vals, sign, shift, lag in ((inside_sq, -1.0, 0.0, lags[0]),
+                                   (outside_23, 1.0, 1.0, lags[1])):
         avail = vals.size
         lo, hi = m1, min(m2, avail - 1)
         if hi - lo < 5:
@@ -193,7 +240,7 @@ def edge_offset_plain(inside_sq, outside_23, h, nodes):
         deg = 3 if hi - lo >= 5 else 2
         root = _root_near_zero(sign * (m + shift) * h, vals[m], deg)
         if root is not None and -h <= root <= 2.0 * h:
-            est.append(root)
+            est.append(root - lag)
     if est:
         return min(max(sum(est) / len(est), -0.5 * h), 1.5 * h)
     if inside_sq.size >= 2 and inside_sq[1] > inside_sq[0]:
@@ -201,8 +248,10 @@ def edge_offset_plain(inside_sq, outside_23, h, nodes):
     return 0.5 * h
 
 
-def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h):
-    """(trailing, leading) edges of one patch, unwrapped so that leading > trailing."""
+def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h, lag=0.0):
+    """(trailing, leading) edges of one patch, unwrapped so that leading > trailing.  ``lag``:
+    `edge_lags` (the pressure side of the leading edge and the gap side of the trailing edge
+    lie that far outside the true edges)."""
     n = sigma.size
     last = first + length - 1
     half = (length - 1) // 2 + 1
@@ -212,8 +261,8 @@ def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h):
     out_trail = np.abs(gap[(first - 1 - np.arange(max(free_before // 2, 0))) % n]) ** (2.0 / 3.0)
     x_first = x[first]
     x_last = x_first + (length - 1) * h
-    lead = x_last + edge_offset(ins_lead, out_lead, h, n)
-    trail = x_first - edge_offset(ins_trail, out_trail, h, n)
+    lead = x_last + edge_offset(ins_lead, out_lead, h, n, (lag, 0.0))
+    trail = x_first - edge_offset(ins_trail, out_trail, h, n, (0.0, lag))
     return trail, lead
 
 
@@ -258,7 +307,7 @@ def _summit(profile, y, ids, xs, trail, lead):
     return t if height(t) >= height(start) else start
 
 
-def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False):
+def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False, lag=0.0):
     """Contact patches of a partial contact (`Patch` with sub-panel edges).
 
     With ``profile`` (and its panel heights ``y``) each patch gets its summit and ka, ke, kê
@@ -283,7 +332,8 @@ def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False):
                 free_after = n - first - length
             if i == 0:
                 free_before = first
-        trail, lead = _patch_edges(sigma, gap, first, length, free_after, free_before, x, h)
+        trail, lead = _patch_edges(sigma, gap, first, length, free_after, free_before, x, h,
+                                   lag)
         shift = -math.floor(0.5 * (trail + lead) + 0.5)  # centre into [-1/2, 1/2)
         trail += shift
         lead += shift
@@ -550,7 +600,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         ka, ke, ke_hat = math.pi, None, patches[0].ke_hat
     else:
         patches = tuple(_patches(sigma, gap, active, grid.x, grid.h, profile, grid.y,
-                                 grid.window))
+                                 grid.window, edge_lags(material, speed, grid.h, grid.n)))
         frac = float(sum(p.width for p in patches))
         if len(patches) == 1:
             ka, ke, ke_hat = patches[0].ka, patches[0].ke, patches[0].ke_hat

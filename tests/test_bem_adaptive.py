@@ -64,18 +64,23 @@ def test_cap_reached_is_not_an_answer():
 
 
 def test_unresolved_memory_length_enters_the_estimate():
-    """At V/V0 = 1e-3 (memory length 1.6e-4 λ, under 4 panels of N = 4096) the trailing edge
-    retreats from Westergaard's by (1 − 1/ρ)(V/V0)/2 = 3.3e-4.  The differences between grids
-    cannot tell whether a mesh that coarse sees it, so the estimate includes it.  (It does: the
-    edge fit on the contact side finds it, true error 7.6e-7; a fit of the gap behind the edge,
-    where the memory acts, misses it by 3.1e-4, and the edge fit rejects that side because its
-    zero moves with the fit window.)"""
+    """At V/V0 = 1e-3 (memory length 1.6e-4 λ) the trailing edge retreats from Westergaard's by
+    (1 − 1/ρ)(V/V0)/2 = 3.3e-4 (the paper's first-order law).  On N = 512 and 1024 the memory
+    lies far below the distances the edge fits use: their zeros find the outer fields' edges,
+    and the memory lag of the fits (bem._assemble.edge_lags) puts the edges back; without it ka
+    is off by the whole shift.  At every N the estimate, which carries what the lag may leave
+    and the whole shift of a memory between the fitted distances (N = 2048), covers the true
+    error."""
     ref = analytic.solve(load=0.3, speed=1e-3)
-    r = bem.solve(load=0.3, speed=1e-3, nodes=4096)
     shift = (1 - 1 / 3) * 1e-3 / 2
+    for n in (512, 1024, 2048, 4096):
+        r = bem.solve(load=0.3, speed=1e-3, nodes=n)
+        err = max(abs(r.ka - ref.ka), abs(r.ke - ref.ke))
+        if n <= 1024:
+            assert err < 0.1 * shift, n
+        assert r.error_estimate["ka"] >= err and r.error_estimate["ke"] >= err, n
+        assert "memory length" in r.diagnostics["estimate_note"]
     assert abs(r.ka - ref.ka) < 0.01 * shift
-    assert r.error_estimate["ka"] >= 1.5 * shift
-    assert "memory length" in r.diagnostics["estimate_note"]
 
 
 def test_fast_contact_ahead_of_its_crest_is_measured_from_the_crest():

@@ -8,7 +8,8 @@ import bem
 
 from _bem_references import full_contact, westergaard
 
-SLS = bem.Prony.standard_linear_solid(3.0)
+RATIO = 3.0
+SLS = bem.Prony.standard_linear_solid(RATIO)
 TWO_TERM = bem.Prony(1.0, (0.5, 0.3), (1.0, 0.01))
 
 # Tolerances (what each one measures):
@@ -36,15 +37,15 @@ ORDER_PEAK = 1.7
 ORDER_KA = 1.6
 #: RMS errors at N = 2^16 (measured slow/fast: penetration 2.7e-10/3.7e-10, peak
 #: 4.3e-10/1.3e-9, k a 5.7e-9/5.0e-9; 1.0e-7/2.0e-7 with a plain polynomial edge fit).
-#: The physical deviation of Δ from the elastic limits is O(w^2) / O(w^-2), but that of k a at low speed is first order: k a =
-#: k a_W − (1 − 1/ρ) w/2 (the trailing edge retreats).  At w = 1e-6 the pressure memory
-#: layer w/ρ spans < 0.06 panel even at N = 2^20, so the BEM cannot see the shift and k a
-#: is compared with Westergaard only to 5e-7 (> the shift, 3.3e-7) at low speed;
-#: tests/test_crosscheck.py checks the shift where the mesh resolves the layer.  At high
-#: speed the deviation is O(w^-2) and k a is held to 2e-8.
+#: The physical deviation of Δ from the elastic limits is O(w^2) / O(w^-2), but that of k a at
+#: low speed is first order: k a = k a_W − (1 − 1/ρ) w/2 (the trailing edge retreats by the
+#: memory length; 3.3e-7 at w = 1e-6).  That memory lies far below every panel here, and the
+#: edge fits' memory lag (bem._assemble.edge_lags) puts the edges where it leaves them, so
+#: k a is compared with that first-order law (its O(w^2) remainder is 1e-12).  At high
+#: speed the deviation is O(w^-2).  Both are held to 2e-8 (measured 5.7e-9 and 5.0e-9).
 ERR_PENETRATION_2_16 = 1e-9
 ERR_PEAK_2_16 = 3e-9
-ERR_KA_2_16 = {1e-6: 5e-7, 1e6: 2e-8}
+ERR_KA_2_16 = {1e-6: 2e-8, 1e6: 2e-8}
 
 
 def _fit_order(ns, errs):
@@ -63,7 +64,8 @@ def test_westergaard_limits_and_observed_order(speed, modulus):
             ref = westergaard(load, 1.0, modulus)
             r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=speed, nodes=int(n), load=load)
             assert r.success and not r.full_contact and len(r.patches) == 1
-            sq += np.array([r.ka - ref["ka"], r.penetration - ref["penetration"],
+            ka = ref["ka"] - ((1 - 1 / RATIO) * speed / 2 if speed < 1 else 0.0)
+            sq += np.array([r.ka - ka, r.penetration - ref["penetration"],
                             r.pressure.max() - ref["peak"]]) ** 2
         err[i] = np.sqrt(sq / len(loads))
     assert _fit_order(ns, err[:, 1]) > ORDER_PENETRATION
