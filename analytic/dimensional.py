@@ -13,17 +13,18 @@ from . import solver
 from ._accepted import ACCEPTED
 from .full_contact import threshold_speed, transition_load
 
-def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
-             penetration=None):
+def solve_si(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressure=None,
+             penetration=None, tau_creep=None, tau_relax=None):
     """Solve the paper's problem from SI data.
 
     Parameters
     ----------
     E0, Einf : float
         Relaxed and instantaneous Young's moduli [Pa], Einf > E0 (eq. 2.3: 1/E∞ = 1/E0 − 1/E1).
-    tau : float
-        Creep (retardation) time of eq. (2.3) [s].  For a relaxation time τ_R of the same solid,
-        τ = τ_R E∞/E0.
+    tau_creep, tau_relax : float
+        Exactly one time of the solid [s]: its creep (retardation) time τ of eq. (2.3)
+        (``tau`` is the older name of ``tau_creep``), or its relaxation time τ_R = τ E0/E∞,
+        converted exactly to τ = τ_R E∞/E0.  The speed group is V τ k with the creep time.
     nu : float
         Poisson's ratio, −1 < ν ≤ 0.5.
     wavelength, amplitude : float
@@ -48,9 +49,9 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
         An SI input that is invalid or whose dimensionless group lies outside
         `analytic.ACCEPTED` (named by the SI parameter it comes from).
     """
-    sc = _si.scales(E0=E0, Einf=Einf, tau=tau, nu=nu, wavelength=wavelength,
-                    amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
-                    penetration=penetration)
+    sc = _si.scales(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax, nu=nu,
+                    wavelength=wavelength, amplitude=amplitude, speed=speed,
+                    mean_pressure=mean_pressure, penetration=penetration)
     groups = _si.groups(sc, solver.validate, ACCEPTED)
     sol = solver.solve(**groups)
     vth = threshold_speed(sol.load, sc.ratio, sc.hk) if sol.success else None

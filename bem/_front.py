@@ -3,11 +3,16 @@
 """
 from __future__ import annotations
 
+import math
+import warnings
+
+import numpy as np
+
 from viscosine import _si, _table
 
 from . import _solver
 from ._accepted import ACCEPTED, validate
-from ._inputs import Prony
+from ._inputs import Prony, SampledProfile
 
 def sweep(*, load=None, penetration=None, speed, errors=False, **options):
     """Solve every (load or penetration, speed) pair: loads outer, speeds inner.
@@ -36,15 +41,38 @@ def sweep(*, load=None, penetration=None, speed, errors=False, **options):
                         speed=speed, errors=errors, extra=("nodes",), **options)
 
 
-def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
+def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=None, E0=None,
+             Einf=None, tau=None, tau_creep=None, tau_relax=None, mean_pressure=None,
              penetration=None, **bem_options):
-    """Solve the paper's problem (a sinusoid on the standard linear solid) from SI data.
+    """Solve a sliding contact from SI data: any material, the sinusoid or a sampled profile.
 
     Parameters
     ----------
-    E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration
-        As in `analytic.solve_si`: moduli [Pa] (Einf > E0), the creep time of eq. (2.3) [s],
-        Poisson's ratio, λ and h [m], V [m/s] and exactly one of p∞ [Pa] and Δ [m].
+    nu : float
+        Poisson's ratio, −1 < ν ≤ 0.5.
+    wavelength : float
+        λ [m], the period of the profile.
+    speed : float
+        V ≥ 0 [m/s].
+    amplitude : float, optional
+        h [m] of the sinusoid h cos(2π x/λ) (the paper's indenter).
+    heights : array_like, optional
+        Instead of ``amplitude``: the heights y [m] of one period of any profile sampled at
+        ``x_j = (j/M − 1/2) λ`` (M ≥ 8, `bem.SampledProfile` of k y); h = max y − mean y.
+    material : viscosine.materials.Maxwell, optional
+        A relaxation-form Prony series, moduli in Pa and times in s, or a series fitted to DMA
+        data (`viscosine.materials.fit_prony`, in the data's modulus unit, which the data's
+        header must name: it is turned into Pa).  Its reference units are its relaxed modulus
+        E_r and 1 s: the dimensionless speed is V k × 1 s.  Not with E0, Einf, tau_*.
+    E0, Einf : float, optional
+        Instead of ``material``, the standard linear solid of eq. (2.3): relaxed and
+        instantaneous moduli [Pa], Einf > E0.
+    tau_creep, tau_relax : float, optional
+        With E0, Einf, exactly one time of the solid [s]: its creep (retardation) time τ
+        (``tau`` is the older name of ``tau_creep``) or its relaxation time τ_R = τ E0/Einf,
+        converted exactly (τ = τ_R Einf/E0).  The dimensionless speed is V τ k.
+    mean_pressure, penetration : float
+        Exactly one: p∞ [Pa] or Δ [m], 0 < Δ ≤ h.
     **bem_options
         Options of `bem.solve` (nodes, rtol, max_nodes, tol, …).
 
@@ -53,25 +81,81 @@ def solve_si(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=N
     viscosine.SIResult
         Lengths in m, stresses in Pa; ``solution`` is the `BemResult`.  ``full_contact_pressure``
         is p_FC(V) = (hk/2)|E*(kV)|/(1 − ν²) of the sinusoid (Appendix B, eq. B6, from the
-        material's own complex compliance); ``threshold_speed`` is None (the BEM has no closed
-        form for it).
+        material's own complex compliance; None for a sampled profile); ``threshold_speed`` is
+        None (the BEM has no closed form for it).  A DMA fit probed at frequencies k_n V
+        outside its measured window (n = 1 … ⌈λ/2a⌉, the harmonics of the contact) raises a
+        `UserWarning` (the modulus there is extrapolated).
 
     Raises
     ------
     ValueError
         An SI input that is invalid, or whose dimensionless group lies outside `bem.ACCEPTED`
         (named by the SI parameter it comes from).
+
+    References
+    ----------
+    Menga, Putignano, Carbone & Demelio (2014): eq. (2.3) (the solid and its creep time),
+    eqs (2.7)–(2.8) (the modulus at the sliding frequency), eq. (B6) (full contact).
     """
-    for name in ("profile", "material", "ratio", "hk", "load"):
+    for name in ("profile", "ratio", "hk", "load"):
         if name in bem_options:
             raise ValueError(f"{name}={bem_options[name]!r} is not allowed: solve_si takes the "
-                             "problem in SI (use bem.solve for other profiles and materials)")
-    sc = _si.scales(E0=E0, Einf=Einf, tau=tau, nu=nu, wavelength=wavelength,
-                    amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
-                    penetration=penetration)
+                             "problem in SI (profile as heights= [m], the material as "
+                             "material= or E0, Einf, tau_creep)")
+    profile = None
+    if heights is not None:
+        if amplitude is not None:
+            raise ValueError(f"amplitude={amplitude!r} is not allowed with heights=: the "
+                             "sampled profile fixes its amplitude (max y − mean y)")
+        lam = _si._real("wavelength", wavelength, "m", lambda v: v > 0.0, "a finite length > 0")
+        k = 2.0 * math.pi / lam
+        try:
+            ky = np.asarray(heights, dtype=float) * k
+        except (TypeError, ValueError):
+            raise ValueError(f"heights={heights!r} is not allowed: a 1-D array of heights "
+                             "[m]") from None
+        profile = SampledProfile(ky)
+        amplitude = profile.amplitude / k
+    model = None
+    if material is not None:
+        from viscosine.materials import Maxwell
+        sls = {k: v for k, v in (("E0", E0), ("Einf", Einf), ("tau", tau),
+                                  ("tau_creep", tau_creep), ("tau_relax", tau_relax))
+               if v is not None}
+        if sls:
+            name, value = next(iter(sls.items()))
+            raise ValueError(f"{name}={value!r} is not allowed with material=: the material "
+                             "fixes the moduli and times")
+        if not isinstance(material, Maxwell):
+            raise ValueError(f"material={material!r} is not allowed: a "
+                             "viscosine.materials.Maxwell (moduli in Pa, times in s, or a DMA "
+                             "fit whose data name their modulus unit)")
+        model = material.in_pascals()
+        sc = _si.material_scales(E_ref=model.E_r, tau_ref=1.0, nu=nu, wavelength=wavelength,
+                                 amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
+                                 penetration=penetration)
+        prony = Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0))
+    else:
+        sc = _si.scales(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax,
+                        nu=nu, wavelength=wavelength, amplitude=amplitude, speed=speed,
+                        mean_pressure=mean_pressure, penetration=penetration)
+        prony = Prony.standard_linear_solid(sc.ratio)
     groups = _si.groups(sc, validate, ACCEPTED, with_hk=("load",))
+    if profile is not None:
+        del groups["hk"]
+        groups["profile"] = profile
+    if model is not None:
+        groups["material"] = prony
+    validate(**{k: v for k, v in groups.items() if k in ("material", "profile")})
     validate(**{k: v for k, v in bem_options.items()})
     sol = _solver.solve(**groups, **bem_options)
-    material = Prony.standard_linear_solid(sc.ratio)
-    pfc = 0.5 * sc.hk / abs(complex(material.jstar([1.0], sc.speed)[0]))
+    pfc = None
+    if profile is None:
+        pfc = 0.5 * sc.hk / abs(complex(prony.jstar([1.0], sc.speed)[0]))
+    if model is not None and sol.success and sc.speed > 0.0:
+        # the contact's harmonics n = 1 … ⌈λ/2a⌉, at ω_n = n k V (rad/s)
+        top = math.ceil(1.0 / max(float(sol.contact_fraction), 1e-300) - 1e-9)
+        text = model.extrapolation_warning(sc.speed, sc.speed * max(1, top))
+        if text is not None:
+            warnings.warn(text, UserWarning, stacklevel=2)
     return _si.result(sol, sc, full_contact_load=pfc, threshold_speed=None)

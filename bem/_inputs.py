@@ -437,7 +437,8 @@ def read_prony(path) -> Prony:
 
     The ``J0`` line is required and comes first; there may be no terms (an
     elastic material).  J(t) = J0 - sum_i J_i exp(-t/tau_i), tau_i are
-    retardation (creep) times.  The file is read as UTF-8 text; a binary, non-UTF-8 or
+    retardation (creep) times.  A relaxation-form file (first line ``E_r <value>``,
+    relaxation times; `viscosine.materials.read_relaxation`) is refused here, by name.  The file is read as UTF-8 text; a binary, non-UTF-8 or
     empty file, or a non-finite value, is refused with a ValueError naming the file.
 
     Returns
@@ -445,6 +446,10 @@ def read_prony(path) -> Prony:
     Prony
     """
     rows = _rows(path, "prony")
+    if rows[0][0].lower() in ("e_r", "er"):  # the relaxation twin of this format
+        raise _bad("prony", str(path), "a creep series (first line 'J0 <value>'); this is a "
+                   "relaxation series (first line 'E_r'): convert it exactly with "
+                   "viscosine.materials.read_relaxation(path).creep(), or give it to --material")
     if rows[0][0].lower() != "j0" or len(rows[0]) != 2:
         raise _bad("prony", str(path), "a first line 'J0 <value>' then lines 'J_i tau_i'")
     if any(len(r) != 2 for r in rows[1:]):

@@ -3,6 +3,10 @@
     python -m comparisons point --solver {analytic,bem} (--load P | --penetration D) --speed S
                                 [--ratio R] [--hk H] [--nodes N | --rtol T] [--max-nodes M]
                                 [--profile F] [--prony F] [--fields FILE.csv]
+                                [--material F [--max-residual B] [--per-decade K]
+                                 [--temperature T (--wlf C1 C2 TREF | --shift-table F)]]
+                                [--units SI --nu NU --wavelength L --amplitude H
+                                 (--E0 E --Einf E (--tau-creep S | --tau-relax S) | --material F)]
     python -m comparisons sweep --solver {analytic,bem} (--load P [P ...] | --penetration D [D ...])
                                 --speed S [S ...] [options of point]
                                 [--workers W | --scheduler ADDRESS] [--fields DIR]
@@ -10,6 +14,10 @@
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
     python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door]] [--max-log2n K]
     python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
+    python -m comparisons mastercurve ...           (comparisons/mastercurve.py)
+
+Materials (--material, temperatures, SI, the speed's time): comparisons/_materials.py and
+docs/materials.md.
 
 `point` prints one JSON object; `sweep` one per line, in order (loads outer, speeds inner); a
 value of a sweep may be a log range START:STOP:COUNT.  Exit status: 0 every result printed;
@@ -55,12 +63,23 @@ class Failed(BadInput):
 
 
 class _Parser(argparse.ArgumentParser):
+    #: a value that starts with '-' and a digit is a value (a negative number, 1e-3, or a log
+    #: range such as -1:10:5), never an option: the roads then say what is allowed
+    _VALUE = re.compile(r"^-(\d|\.\d)[\w.:+-]*$")
+
     def __init__(self, *a, **k):
         k.setdefault("allow_abbrev", False)  # --no must not silently mean --nodes
         super().__init__(*a, **k)
+        self._negative_number_matcher = self._VALUE
 
     def error(self, message):  # one line, no usage dump
         raise BadInput(message, prog=self.prog)
+
+    def format_help(self):  # an epilog made when asked for (it may import the roads)
+        make = getattr(self, "epilog_maker", None)
+        if make is not None:
+            self.epilog = make()
+        return super().format_help()
 
 
 class _Once(argparse.Action):
@@ -124,6 +143,14 @@ def log_range(text):
 
 
 # ------------------------------------------------------------------------------ parsers
+_SPEED_HELP = ("V τ_ref k ≥ 0, τ_ref the creep (retardation) time τ of the standard linear "
+               "solid (not its relaxation time τ E0/E∞), or the time unit of the --prony/"
+               "--material file (1 s for a DMA curve); every record states it (time_unit); "
+               "with --units SI, V [m/s]")
+_LOAD_HELP = ("p̃∞ = p∞(1 − ν²)/E_ref > 0, E_ref = E0 (or the --prony/--material file's "
+              "reference modulus); with --units SI, p∞ [Pa]")
+
+
 def _solver_options(p, several):
     """Options shared by point and sweep; `several`: sweep's lists and ranges of values."""
     p.add_argument("--solver", choices=["analytic", "bem"], required=True, action=_Once)
@@ -131,20 +158,20 @@ def _solver_options(p, several):
     if several:
         rng = " (values, or log ranges START:STOP:COUNT)"
         g.add_argument("--load", type=log_range, nargs="+", action=_Once, metavar="P",
-                       help="p̃∞ = p∞(1 − ν²)/E0 > 0" + rng)
+                       help=_LOAD_HELP + rng)
         g.add_argument("--penetration", type=log_range, nargs="+", action=_Once,
                        metavar="D", help="Δ/h in (0, 1]" + rng)
         p.add_argument("--speed", type=log_range, nargs="+", required=True,
-                       action=_Once, metavar="S", help="V/V0 = Vτk ≥ 0" + rng)
+                       action=_Once, metavar="S", help=_SPEED_HELP + rng)
     else:
         g.add_argument("--load", type=_number, action=_Once, metavar="P",
-                       help="p̃∞ = p∞(1 − ν²)/E0 > 0")
+                       help=_LOAD_HELP)
         g.add_argument("--penetration", type=_number, action=_Once, metavar="D",
                        help="Δ/h in (0, 1]; the load is then an output")
         p.add_argument("--speed", type=_number, required=True, action=_Once,
-                       metavar="S", help="V/V0 = Vτk ≥ 0")
+                       metavar="S", help=_SPEED_HELP)
     p.add_argument("--ratio", type=_number, action=_Once, metavar="R",
-                   help="E∞/E0 (default 3); not with --prony")
+                   help="E∞/E0 (default 3); not with --prony or --material")
     p.add_argument("--hk", type=_number, action=_Once, metavar="H",
                    help="h k (default 1); not with --profile")
     p.add_argument("--nodes", type=_integer, action=_Once, metavar="N",
@@ -158,8 +185,47 @@ def _solver_options(p, several):
     p.add_argument("--profile", action=_Once, metavar="FILE",
                    help="BEM only: periodic profile file (bem.read_profile); replaces the sinusoid")
     p.add_argument("--prony", action=_Once, metavar="FILE",
-                   help="BEM only: Prony-series creep function file (bem.read_prony); replaces "
-                        "the standard linear solid")
+                   help="BEM only: Prony-series creep function file (bem.read_prony: creep "
+                        "times, in tau_ref); replaces the standard linear solid")
+    p.add_argument("--material", action=_Once, metavar="FILE",
+                   help="BEM only: a material file, told by its first line: a creep series "
+                        "('J0 <value>' then 'J_i tau_i', creep times), a relaxation series "
+                        "('E_r <value>' then 'E_i theta_i', relaxation times) or a DMA master "
+                        "curve (CSV header frequency, storage, loss; fitted with a Prony series, "
+                        "E_ref its relaxed modulus, tau_ref 1 s); docs/materials.md.  Not with "
+                        "--prony or --ratio")
+    p.add_argument("--max-residual", type=_number, action=_Once, metavar="B",
+                   help="DMA --material: the largest relative residual on E' or E'' the Prony "
+                        "fit may leave (default 0.05), else refused")
+    p.add_argument("--per-decade", type=_number, action=_Once, metavar="K",
+                   help="DMA --material: relaxation times per decade of the fit (default 2)")
+    p.add_argument("--temperature", type=_number, action=_Once, metavar="T",
+                   help="--material at temperature T: every time of the material multiplied by "
+                        "a_T(T) (the file holds it at the shift's reference temperature); with "
+                        "--wlf or --shift-table")
+    shift = p.add_mutually_exclusive_group()
+    shift.add_argument("--wlf", type=_number, nargs=3, action=_Once, metavar=("C1", "C2", "TREF"),
+                       help="WLF shift log10 a_T = -C1 (T - TREF)/(C2 + T - TREF)")
+    shift.add_argument("--shift-table", action=_Once, metavar="FILE",
+                       help="shift table CSV (columns temperature, log_aT), linear in log10 a_T, "
+                            "no extrapolation")
+    p.add_argument("--units", choices=["conventions", "SI"], action=_Once,
+                   help="SI: --load is p∞ [Pa] (--penetration Δ [m]), --speed V [m/s], with "
+                        "--nu, --wavelength, --amplitude and the material (--E0 --Einf with "
+                        "--tau-creep or --tau-relax, or --material: series files in Pa and s, a "
+                        "DMA curve in its header's unit); the record adds 'si' (default: the "
+                        "conventions' dimensionless groups)")
+    for names, unit, what in ((("--E0",), "Pa", "relaxed modulus of the standard linear solid"),
+                              (("--Einf",), "Pa", "instantaneous (glassy) modulus, > E0"),
+                              (("--tau-creep", "--tau"), "s", "creep (retardation) time τ of "
+                               "the solid, eq. (2.3); the speed group is V τ k"),
+                              (("--tau-relax",), "s", "relaxation time of the solid, τ E0/Einf "
+                               "(instead of --tau-creep)"),
+                              (("--nu",), "-", "Poisson's ratio"),
+                              (("--wavelength",), "m", "λ of the sinusoid"),
+                              (("--amplitude",), "m", "h of the sinusoid")):
+        p.add_argument(*names, type=_number, action=_Once, metavar="X",
+                       help=f"--units SI: {what} [{unit}]")
 
 
 def _parallel_options(p, what):
@@ -171,9 +237,44 @@ def _parallel_options(p, what):
                         "tcp://host:8786; needs viscosine[cluster]); not with --workers")
 
 
+def _allowed(text):
+    """The range part of an ACCEPTED reason: up to its first ': ' outside brackets (an
+    interval such as (1, 10] closes with either)."""
+    depth = 0
+    for i, ch in enumerate(text):
+        depth += (ch in "([") - (ch in ")]")
+        if depth == 0 and text.startswith(": ", i):
+            return text[:i]
+    return text
+
+
+def accepted_ranges():
+    """The accepted range of every input of point and sweep, from analytic.ACCEPTED and
+    bem.ACCEPTED (for --help)."""
+    import textwrap
+
+    import analytic
+    import bem
+    rows = [("--load", "load"), ("--penetration", "penetration"), ("--speed", "speed"),
+            ("--ratio", "ratio"), ("--hk", "hk"), ("--nodes", "nodes"), ("--rtol", "rtol"),
+            ("--max-nodes", "max_nodes"), ("--profile", "profile"), ("--prony", "material")]
+    lines = textwrap.wrap("accepted inputs (analytic.ACCEPTED and bem.ACCEPTED give the reason "
+                          "for each bound; outside them: exit status 2, nothing solved):", 96)
+    for option, key in rows:
+        for road, table in (("analytic", analytic.ACCEPTED), ("bem", bem.ACCEPTED)):
+            if key in table:
+                lines += textwrap.wrap(f"{road}: {_allowed(table[key][2])}", 96,
+                                       initial_indent=f"  {option:<15}" if road == "analytic"
+                                       or key not in analytic.ACCEPTED else " " * 17,
+                                       subsequent_indent=" " * 21)
+    return "\n".join(lines)
+
+
 def add_point_parser(sub):
     p = sub.add_parser("point", help="solve one operating point, print one JSON object",
-                       description="Solve one operating point and print one JSON object.")
+                       description="Solve one operating point and print one JSON object.",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.epilog_maker = accepted_ranges
     _solver_options(p, several=False)
     p.add_argument("--fields", action=_Once, metavar="FILE.csv",
                    help="also write σ, v and the gap over one period to this CSV file")
@@ -183,7 +284,9 @@ def add_point_parser(sub):
 def add_sweep_parser(sub):
     p = sub.add_parser("sweep", help="solve every (load, speed) pair, one JSON object per line",
                        description="Solve every (load or penetration, speed) pair, loads in the "
-                                   "outer loop, and print one JSON object per line, in order.")
+                                   "outer loop, and print one JSON object per line, in order.",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.epilog_maker = accepted_ranges
     _solver_options(p, several=True)
     _parallel_options(p, "default 1: this process")
     p.add_argument("--fields", action=_Once, metavar="DIR",
@@ -265,7 +368,8 @@ def module_subcommand(name):
 #: the subcommands, in the order of --help (one line per subcommand; a subcommand in a module
 #: of its own is ``module_subcommand("name")``)
 SUBCOMMANDS = [add_point_parser, add_sweep_parser, add_report_parser, add_crosscheck_parser,
-               add_bench_parser, module_subcommand("suite"), module_subcommand("verify")]
+               add_bench_parser, module_subcommand("suite"), module_subcommand("verify"),
+               module_subcommand("mastercurve")]
 
 
 def build_parser():
@@ -313,6 +417,8 @@ def _check_output_dir(option, path, create):
         parent = os.path.dirname(os.path.abspath(path))
         if not os.path.isdir(parent):
             raise BadInput(f"{option} {path}: the folder {parent} does not exist")
+        if not os.access(parent, os.W_OK | os.X_OK):  # it could not be made there
+            raise BadInput(f"{option} {path}: the folder {parent} is not writable")
         if create:
             try:
                 os.mkdir(path)
@@ -327,14 +433,67 @@ def _check_workers(args):
         raise BadInput(f"--workers {args.workers} is not allowed: an integer ≥ 1")
 
 
-def _resolve(args, *, load=None, penetration=None, speed=None, files=None):
+def _resolve(args, *, load=None, penetration=None, speed=None, files=None, si=None):
     try:
         return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
                               ratio=args.ratio, hk=args.hk, nodes=args.nodes, rtol=args.rtol,
                               max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
-                              fields=args.fields is not None, files=files)
+                              fields=args.fields is not None, files=files,
+                              material=args.material,
+                              material_options={**_material_options(args),
+                                                "si": args.units == "SI" or None},
+                              si=si)
     except runner.InputError as exc:
         raise BadInput(str(exc)) from None
+
+
+def _units_si(args, files):
+    """``--units SI``: the SI values in ``args`` become the dimensionless groups (in place);
+    returns the spec's ``si`` description, or None in the conventions' units."""
+    given = {k: getattr(args, k) for k in ("E0", "Einf", "tau_creep", "tau_relax", "nu",
+                                           "wavelength", "amplitude")}
+    if args.units != "SI":
+        extra = [k for k, v in given.items() if v is not None]
+        if extra:
+            raise BadInput(f"--{extra[0].replace('_', '-')} is not allowed without --units SI: "
+                           "an SI input (the conventions' groups need none)")
+        return None
+    for option in ("ratio", "hk", "profile", "prony"):
+        if getattr(args, option) is not None:
+            raise BadInput(f"--{option} is not allowed with --units SI: the SI problem is the "
+                           "sinusoid of --amplitude, --wavelength on --E0 --Einf --tau-creep or "
+                           "a --material file")
+    material = None
+    if args.material is not None:
+        if args.solver != "bem":
+            raise BadInput("--material is not allowed here: a BEM option (the semi-analytic road "
+                           "solves the sinusoid on the standard linear solid; use --solver bem)")
+        opts = {k: v for k, v in _material_options(args).items() if v is not None}
+        try:
+            files["material"] = runner.read_material(args.material, **opts, si=True)
+        except runner.InputError as exc:
+            raise BadInput(f"{exc}") from None
+        material = files["material"][1]
+    several = isinstance(args.speed, list)
+
+    def listed(v):
+        return None if v is None else (v if several else [v])
+    try:
+        out = runner.resolve_si(args.solver, given, loads=listed(args.load),
+                                penetrations=listed(args.penetration), speeds=listed(args.speed),
+                                material=material)
+    except runner.InputError as exc:
+        raise BadInput(f"{exc}") from None
+    for key in ("load", "penetration", "speed"):
+        if out[key] is not None:
+            setattr(args, key, out[key] if several else out[key][0])
+    args.ratio, args.hk = out["ratio"], out["hk"]
+    return out["si"]
+
+
+def _material_options(args):
+    return {"temperature": args.temperature, "wlf": args.wlf, "shift_table": args.shift_table,
+            "max_residual": args.max_residual, "per_decade": args.per_decade}
 
 
 def _validate(spec):
@@ -362,7 +521,10 @@ def _describe(spec):
 def _cmd_point(args):
     if args.fields is not None:
         _check_output_file("--fields", args.fields)
-    spec = _resolve(args, load=args.load, penetration=args.penetration, speed=args.speed)
+    files = {}
+    si = _units_si(args, files)
+    spec = _resolve(args, load=args.load, penetration=args.penetration, speed=args.speed,
+                    files=files, si=si)
     _validate(spec)
     out = runner.run(spec, fields=args.fields is not None, deep=True)
     for w in out["warnings"]:
@@ -410,21 +572,26 @@ def field_file_name(spec, used, index):
 def _cmd_sweep(args):
     from . import _cluster
     _check_workers(args)
+    files = {}
+    si = _units_si(args, files)
     control = "load" if args.load is not None else "penetration"
     values = args.load if args.load is not None else args.penetration
     speeds = args.speed
     total = len(values) * len(speeds)
     if args.fields is not None:
         _check_output_dir("--fields", args.fields, create=False)
-    files = {}
-    for option in ("profile", "prony"):  # each file is read (and checked) once
+    for option in ("profile", "prony", "material"):  # each file is read (and checked) once
         path = getattr(args, option)
-        if path is not None and args.solver == "bem":
+        if path is not None and args.solver == "bem" and option not in files and not (
+                option == "material" and args.prony is not None):
             try:
-                files[option] = runner.read_input(option, path)
+                files[option] = (runner.read_input(option, path) if option != "material" else
+                                 runner.read_material(path, **{
+                                     k: v for k, v in _material_options(args).items()
+                                     if v is not None}))
             except runner.InputError as exc:
                 raise BadInput(f"{exc}") from None
-    base = _resolve(args, speed=speeds[0], files=files, **{control: values[0]})
+    base = _resolve(args, speed=speeds[0], files=files, si=si, **{control: values[0]})
     # every input is checked before any work; the ranges are per input, so each value once
     for v in dict.fromkeys(values):
         _validate({**base, control: v})
@@ -494,6 +661,9 @@ def _cmd_report(args):
         raise BadInput(f"{exc}") from None
     except _cluster.ClusterError as exc:
         raise Failed(f"{exc}") from None
+    except OSError as exc:  # the folder went away or filled up during the run
+        raise Failed(f"--out {args.out}: cannot write {exc.filename or 'the report'} "
+                     f"({exc.strerror or exc})") from None
 
 
 def _cmd_bench(args):

@@ -4,8 +4,12 @@ An operating point is a plain dict of dimensionless numbers (a *spec*), so that 
 road leaks into the other and a spec can cross a process or network boundary.  Keys:
 ``solver``, ``load`` | ``penetration``, ``speed``, ``ratio``, ``hk``, ``nodes``, ``rtol``,
 ``max_nodes``, ``profile``, ``prony`` (None, or ``{"path", "sha256"}`` of the file read) and
-``field_points`` (analytic road: points of the written fields).  Keys starting with ``_`` carry
-the parsed input files to the worker and are never recorded.
+``field_points`` (analytic road: points of the written fields); with ``--material`` also
+``material``, the description of the material (`comparisons._materials`: form, file, SHA-256,
+reference modulus and time, temperature, fit residuals), which every record carries (for the
+standard linear solid and ``--prony`` too) with ``time_unit``, the sentence that says which time
+the speed is measured in.  Keys starting with ``_`` carry the parsed input files to the worker
+and are never recorded.
 
 - :func:`resolve` turns command-line options (None = not given) into a spec: it is the one place
   where defaults are applied and options that do not apply are refused.
@@ -26,6 +30,7 @@ import hashlib
 import inspect
 import math
 import os
+import re
 import secrets
 import stat
 import time
@@ -104,7 +109,8 @@ def public(spec):
 
 
 def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=None, nodes=None,
-            rtol=None, max_nodes=None, profile=None, prony=None, fields=False, files=None):
+            rtol=None, max_nodes=None, profile=None, prony=None, fields=False, files=None,
+            material=None, material_options=None, si=None):
     """Command-line options (None = not given) → spec, with the defaults applied here only.
 
     Options that do not apply to the chosen inputs are refused, never recorded as if used:
@@ -115,8 +121,17 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     Parameters
     ----------
     files : dict, optional
-        Already read input files ``{"profile": (info, object), "prony": (info, object)}``, so
-        that a sweep reads each file once; otherwise they are read here.
+        Already read input files ``{"profile": (info, object), "prony": (info, object),
+        "material": (info, Material)}``, so that a sweep reads each file once; otherwise they
+        are read here.
+    material : str, optional
+        A material file of any accepted form (`comparisons._materials`), BEM only, not with
+        ``prony`` or ``ratio``.
+    material_options : dict, optional
+        ``temperature``, ``wlf``, ``shift_table``, ``max_residual``, ``per_decade`` of the
+        material (None = not given); only with ``material``; ``si`` True reads the file in SI.
+    si : dict, optional
+        ``--units SI``: the ``si`` description of `resolve_si` (the values are then its groups).
 
     Raises
     ------
@@ -125,9 +140,18 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     def refuse(option, why):
         raise InputError(f"{option} is not allowed here: {why}")
 
+    options = {k: v for k, v in (material_options or {}).items() if v is not None}
+    in_si = options.pop("si", False)
+    if options and material is None:
+        refuse(_MATERIAL_OPTIONS[next(iter(options))], "it applies to a --material file (give "
+               "the material with --material FILE)")
+    if material is not None and prony is not None:
+        refuse("--material", "--prony gives the material already (--material reads the same "
+               "creep-series files, and relaxation series and DMA curves)")
     if solver == "analytic":
-        if profile is not None or prony is not None:
-            refuse("--profile" if profile is not None else "--prony",
+        if profile is not None or prony is not None or material is not None:
+            refuse("--profile" if profile is not None else (
+                   "--prony" if prony is not None else "--material"),
                    "a BEM option (the semi-analytic road solves the sinusoid on the standard "
                    "linear solid; use --solver bem)")
         if rtol is not None or max_nodes is not None:
@@ -141,6 +165,8 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
             refuse("--hk", "the --profile file fixes the indenter and its amplitude")
         if ratio is not None and prony is not None:
             refuse("--ratio", "the --prony file fixes the material")
+        if ratio is not None and material is not None:
+            refuse("--ratio", "the --material file fixes the material")
         if nodes is not None and (rtol is not None or max_nodes is not None):
             refuse("--rtol" if rtol is not None else "--max-nodes",
                    f"--nodes {nodes} fixes the mesh; --rtol and --max-nodes steer the adaptive "
@@ -153,6 +179,8 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
 
     spec = dict.fromkeys(SPEC_KEYS)
     spec.update(solver=solver, load=load, penetration=penetration, speed=speed)
+    if si is not None:  # only then: the spec of every other point keeps its keys (and hash)
+        spec["si"] = si
     if solver == "analytic":
         spec["ratio"] = DEFAULTS["ratio"] if ratio is None else ratio
         spec["hk"] = DEFAULTS["hk"] if hk is None else hk
@@ -163,7 +191,10 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     for option, path in (("profile", profile), ("prony", prony)):
         if path is not None and option not in files:
             files[option] = read_input(option, path)
-    spec["ratio"] = None if prony is not None else (DEFAULTS["ratio"] if ratio is None else ratio)
+    if material is not None and "material" not in files:
+        files["material"] = read_material(material, **options, si=in_si)
+    fixed = prony is not None or material is not None
+    spec["ratio"] = None if fixed else (DEFAULTS["ratio"] if ratio is None else ratio)
     spec["hk"] = None if profile is not None else (DEFAULTS["hk"] if hk is None else hk)
     spec["nodes"] = nodes
     if nodes is None:
@@ -172,12 +203,161 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
             spec["max_nodes"] = max_nodes
         else:
             spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
-    for option in ("profile", "prony"):
+    for option in ("profile", "prony", "material"):
         if option in files:
             info, obj = files[option]
             spec[option] = info
             spec["_" + option] = obj
     return spec
+
+
+# ------------------------------------------------------------------------------ SI inputs
+#: the option the user typed behind each SI keyword
+_SI_NAMES = {"mean_pressure": "--load", "penetration": "--penetration", "speed": "--speed",
+             "E0": "--E0", "Einf": "--Einf", "tau": "--tau", "tau_creep": "--tau-creep",
+             "tau_relax": "--tau-relax", "nu": "--nu", "wavelength": "--wavelength",
+             "amplitude": "--amplitude", "E_ref": "--material"}
+
+
+def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=None):
+    """``--units SI``: SI values of point or sweep turned into the dimensionless groups.
+
+    Parameters
+    ----------
+    si : dict
+        The SI options given (keywords of `viscosine._si`, None = not given): ``nu``,
+        ``wavelength``, ``amplitude`` always; the standard linear solid's ``E0``, ``Einf`` and
+        one time (``tau_creep``, alias ``tau``, or ``tau_relax``) unless ``material`` is given.
+    loads, penetrations : list of float
+        Mean pressures p∞ [Pa] or penetrations Δ [m] (exactly one list).
+    speeds : list of float
+        V [m/s].
+    material : Material, optional
+        Read with ``si=True``: reference modulus its relaxed modulus E_r [Pa], time 1 s.
+
+    Returns
+    -------
+    dict
+        ``load`` or ``penetration`` and ``speed`` (lists of groups), ``ratio`` (the solid's, or
+        None), ``hk``, and ``si``: the JSON description of the scales (goes into the spec and
+        every record).
+
+    Raises
+    ------
+    InputError
+        A missing, extra or invalid SI option, or a group outside the road's accepted range,
+        named by the option the user typed.
+    """
+    from viscosine import _si
+    road = _road_module(solver)
+    given = {k: v for k, v in si.items() if v is not None}
+    need = ["nu", "wavelength", "amplitude"]
+    if material is None:
+        need += ["E0", "Einf"]
+        if not {"tau", "tau_creep", "tau_relax"} & set(given):
+            need.append("tau_creep")
+    else:
+        extra = [k for k in ("E0", "Einf", "tau", "tau_creep", "tau_relax") if k in given]
+        if extra:
+            raise InputError(f"{_SI_NAMES[extra[0]]} is not allowed with --material: the "
+                             "material file fixes the moduli and times")
+    missing = [k for k in need if k not in given]
+    if missing:
+        raise InputError(f"{_SI_NAMES[missing[0]]} is missing: --units SI needs --nu, "
+                         "--wavelength, --amplitude [m] and the material (--material FILE, or "
+                         "--E0 --Einf [Pa] with --tau-creep or --tau-relax [s])")
+    control = "mean_pressure" if loads is not None else "penetration"
+    values = loads if loads is not None else penetrations
+
+    def scales(value, speed):
+        try:
+            if material is None:
+                sc = _si.scales(**{k: given.get(k) for k in ("E0", "Einf", "tau", "tau_creep",
+                                                              "tau_relax")},
+                                nu=given["nu"], wavelength=given["wavelength"],
+                                amplitude=given["amplitude"], speed=speed, **{control: value})
+            else:
+                sc = _si.material_scales(E_ref=material.info["E_ref"], tau_ref=1.0,
+                                         nu=given["nu"], wavelength=given["wavelength"],
+                                         amplitude=given["amplitude"], speed=speed,
+                                         **{control: value})
+            groups = _si.groups(sc, road.validate, road.ACCEPTED,
+                                with_hk=("load",) if solver == "bem" else ())
+        except ValueError as exc:
+            raise InputError(_si_option_names(_one_line(exc))) from None
+        return sc, groups
+
+    sc, _ = scales(values[0], speeds[0])
+    out = {"load": None, "penetration": None}
+    key = "load" if loads is not None else "penetration"
+    out[key] = [scales(v, speeds[0])[1][key] for v in values]
+    out["speed"] = [scales(values[0], v)[1]["speed"] for v in speeds]
+    out["ratio"], out["hk"] = sc.ratio, sc.hk
+    out["si"] = {"units": "SI", "nu": given["nu"], "wavelength": sc.wavelength,
+                 "amplitude": sc.amplitude, "E_ref": sc.estar * (1.0 - given["nu"] ** 2),
+                 "tau_ref": sc.tau, "plane_strain_modulus": sc.estar,
+                 "load_is": "p_inf (1 - nu^2)/E_ref, p_inf the --load [Pa]",
+                 "speed_is": "V tau_ref k, V the --speed [m/s], k = 2 pi/wavelength"}
+    return out
+
+
+def _road_module(solver):
+    import importlib
+    return importlib.import_module(solver)
+
+
+def _si_option_names(text):
+    """'mean_pressure=…' of the SI front becomes '--load …' (the option the user typed)."""
+    m = re.match(r"(\w+)=(\S+) is not allowed", text)
+    if m and m.group(1) in _SI_NAMES:
+        return f"{_SI_NAMES[m.group(1)]} {m.group(2)}{text[m.end(2):]}"
+    return text
+
+
+def si_block(rec, info):
+    """The record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``."""
+    from types import SimpleNamespace
+
+    from viscosine import _si
+    lam, h = info["wavelength"], info["amplitude"]
+    k = 2.0 * math.pi / lam
+    sc = _si.SIScales(None, h * k, rec["speed"], rec.get("load"), rec.get("penetration"), k,
+                      info["plane_strain_modulus"], lam, h, info["tau_ref"], {})
+    keys = ("success", "message", "full_contact", "ka", "ke", "ke_hat", "penetration",
+            "separation", "load", "tau_f", "mu", "max_pressure", "x_max_pressure")
+    r = _si.result(SimpleNamespace(**{k_: rec.get(k_) for k_ in keys}), sc)
+    out = {name: getattr(r, name) for name in (
+        "contact_halfwidth", "eccentricity", "pressure_eccentricity", "penetration",
+        "mean_separation", "mean_pressure", "friction_stress", "friction_coefficient",
+        "max_pressure", "x_max_pressure", "wavelength", "amplitude", "plane_strain_modulus")}
+    out["speed"] = rec["speed"] / (info["tau_ref"] * k)
+    out["units"] = "m, Pa, m/s"
+    return out
+
+
+#: the option behind each key of ``material_options``
+_MATERIAL_OPTIONS = {"temperature": "--temperature", "wlf": "--wlf",
+                     "shift_table": "--shift-table", "max_residual": "--max-residual",
+                     "per_decade": "--per-decade"}
+
+
+def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
+                  per_decade=None, si=False):
+    """Read a --material file of any accepted form: ``(description, Material)``.
+
+    See `comparisons._materials.read`.
+
+    Raises
+    ------
+    InputError
+    """
+    from . import _materials
+    try:
+        m = _materials.read(path, temperature=temperature, wlf=wlf, shift_table=shift_table,
+                            max_residual=max_residual, per_decade=per_decade, si=si)
+    except ValueError as exc:
+        raise InputError(_one_line(exc)) from None
+    return m.info, m
 
 
 # ------------------------------------------------------------------------------ input files
@@ -193,8 +373,27 @@ def read_input(option, path):
     """
     import bem
     where = f"--{option} {path}"
+    data = file_bytes(f"--{option}", path)
+    reader = bem.read_profile if option == "profile" else bem.read_prony
+    try:
+        obj = reader(path)
+    except (ValueError, UnicodeDecodeError, OSError) as exc:
+        raise InputError(f"{where}: {_one_line(exc)}") from None
+    info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
+    return info, obj
+
+
+def file_bytes(option, path):
+    """The bytes of an input file, which must be a regular UTF-8 text file.
+
+    Raises
+    ------
+    InputError
+        One line ``<option> <path>: ...`` (a missing, special, binary or non-UTF-8 file).
+    """
+    where = f"{option} {path}"
     if path == "":
-        raise InputError(f"--{option} '' is not allowed: the name of a file")
+        raise InputError(f"{option} '' is not allowed: the name of a file")
     try:
         st = os.stat(path)
     except OSError as exc:
@@ -212,13 +411,7 @@ def read_input(option, path):
         data.decode("utf-8")
     except UnicodeDecodeError as exc:
         raise InputError(f"{where}: not UTF-8 text (byte {exc.start}); expected UTF-8 text") from None
-    reader = bem.read_profile if option == "profile" else bem.read_prony
-    try:
-        obj = reader(path)
-    except (ValueError, UnicodeDecodeError, OSError) as exc:
-        raise InputError(f"{where}: {_one_line(exc)}") from None
-    info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
-    return info, obj
+    return data
 
 
 def _kind(mode):
@@ -295,9 +488,39 @@ def _bem_problem(spec):
     if spec.get("prony") is not None:
         obj = spec.get("_prony")
         kw["material"] = obj if obj is not None else read_input("prony", spec["prony"]["path"])[1]
+    elif spec.get("material") is not None:
+        kw["material"] = _material(spec).prony
     else:
         kw["ratio"] = spec["ratio"]
     return kw
+
+
+def _material(spec):
+    """The spec's parsed --material (read again from its description when not carried)."""
+    obj = spec.get("_material")
+    if obj is None:
+        from . import _materials
+        try:
+            obj = _materials.reread(spec["material"])
+        except ValueError as exc:
+            raise InputError(_one_line(exc)) from None
+    return obj
+
+
+def describe_material(spec):
+    """The record's ``material`` (a dict) and ``time_unit`` (a sentence) of a spec."""
+    from . import _materials
+    if spec.get("material") is not None:
+        info = dict(spec["material"])
+    elif spec.get("prony") is not None:
+        obj = spec.get("_prony")
+        if obj is None:
+            obj = read_input("prony", spec["prony"]["path"])[1]
+        info = {"form": "creep", **spec["prony"], "terms": len(obj.J),
+                **_materials.references("creep", False, 1.0, None)}
+    else:
+        info = _materials.sls_description(spec.get("ratio"))
+    return info, info.pop("time_unit")
 
 
 # ------------------------------------------------------------------------------ the roads
@@ -487,7 +710,18 @@ def run(spec, fields=False, deep=None):
             solved = ROADS[spec["solver"]](spec, fields, deep)
         rec = solved.record
         extra = [f"{w.category.__name__}: {w.message}" for w in caught]
-        if extra:  # numerical warnings raised during the solve belong to this point
+        rec["material"], rec["time_unit"] = describe_material(spec)
+        if spec.get("si") is not None:
+            rec["si_scales"] = spec["si"]
+            if rec.get("success"):
+                rec["si"] = si_block(rec, spec["si"])
+        if spec.get("material") is not None and rec.get("success"):
+            from . import _materials
+            text = _materials.extrapolation(_material(spec).model, spec["speed"],
+                                            rec["contact_fraction"])
+            if text is not None:  # the modulus at these frequencies is the fit's guess
+                extra.append(f"extrapolation: {text}")
+        if extra:  # warnings raised during the solve belong to this point
             rec["warnings"] = list(rec.get("warnings") or []) + extra
         problem = check_record(rec, spec, solved.constraints, solved.fields)
     except Exception as exc:  # any failure of the solve: this point could not be solved
@@ -549,6 +783,14 @@ def fields_header(record, spec, fields):
     for k in ("profile_file", "prony_file"):
         if record.get(k):
             lines.append(f"{k.replace('_file', '')}: {record[k]['path']} sha256={record[k]['sha256']}")
+    m = spec.get("material")
+    if m:
+        where = str(m["path"]).encode("ascii", "backslashreplace").decode("ascii")
+        lines.append(f"material: {where} sha256={m['sha256']} form={m['form']} "
+                     f"E_ref={m['E_ref']!r} tau_ref={m['tau_ref']!r} temperature={m['temperature']!r}"
+                     f" log10_aT={m['log10_aT']!r}")
+    if record.get("time_unit"):
+        lines.append(f"time: {record['time_unit']}")
     lines += [f"points: {n}", GRID_UNIFORM if uniform else GRID_NON_UNIFORM,
               "units: x_over_lambda = x/lambda (crest at 0); pressure = sigma (1 - nu^2)/E0; "
               "displacement = v/h (into the body, from the mean line of the deformed surface); "

@@ -5,7 +5,7 @@ the series' own complex compliance); the elastic limits, a split term and a resc
 are identities of the problem, and a one-term series in other units is the paper's standard
 linear solid.  Tolerances: ROUNDOFF for identities the discretisation shares, and for the
 discretised physics 3 × the worst BEM − semi-analytic difference that `comparisons crosscheck`
-measures at the same N (README: at N = 4096, ka 2.1e-6, Δ/h 6.0e-7 relative, μ 4.6e-6 relative).
+measures at the same N (docs/accuracy.md: at N = 4096, ka 2.1e-6, Δ/h 6.0e-7 relative, μ 4.6e-6 relative).
 """
 from __future__ import annotations
 

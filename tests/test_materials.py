@@ -441,6 +441,87 @@ def test_at_temperature_scales_every_time(shift):
     np.testing.assert_allclose(cold.theta, m.at_temperature(shift, 0.0).theta, rtol=1e-12)
 
 
+# ----------------------------------------------------------------- relaxation files, forms, units
+def test_relaxation_file_reads_the_series_and_converts_to_the_creep_file(tmp_path):
+    """A relaxation-series file is the Maxwell form of a material; its creep form is the
+    creep-series file of the same material (both written in one set of units)."""
+    m = Maxwell(1.0, (1.9117622793709936, 0.42157105396233896),
+                (0.04275180120485259, 7.017248198795148))
+    path = tmp_path / "relax.txt"
+    path.write_text("# relaxation form, moduli in E_ref, relaxation times in tau_ref\n"
+                    f"E_r {m.E_r!r}\n" + "".join(f"{e!r}, {t!r}  # term\n"
+                                                 for e, t in zip(m.E, m.theta)))
+    got = materials.read_relaxation(path)
+    assert got == m and got.fit is None
+    assert materials.material_form(path) == "relaxation"
+    c = got.creep()
+    assert c.J0 == 1.0 and len(c.J) == 2
+    (tmp_path / "elastic.txt").write_text("Er 2.5\n")
+    assert materials.read_relaxation(tmp_path / "elastic.txt") == Maxwell(2.5)
+
+
+@pytest.mark.parametrize("content, pattern", [
+    ("J0 1.0\n0.5 1.0\n", r"first line 'E_r <value>'.*line 1: 'J0 1.0'"),
+    ("E_r -1\n", r"relaxed modulus E_r > 0 \(line 1"),
+    ("E_r 1\n-2 0.5\n", r"amplitudes E_i >= 0 \(line 2: -2\.0\)"),
+    ("E_r 1\n2 0\n", r"relaxation times theta_i > 0 \(line 2"),
+    ("E_r 1\n2 nan\n", r"finite numbers \(line 2"),
+    ("E_r 1\n2 0.5 7\n", r"exactly two numbers .*line 2 has 3"),
+    ("E_r 1\n2 x\n", r"numeric fields \(line 2: 'x'"),
+    ("# nothing\n", r"empty or only comments"),
+])
+def test_bad_relaxation_files_are_refused(tmp_path, content, pattern):
+    path = tmp_path / "r.txt"
+    path.write_text(content)
+    with pytest.raises(ValueError, match=pattern) as info:
+        materials.read_relaxation(path)
+    assert str(info.value).startswith(f"relaxation={str(path)!r} is not allowed: ")
+    assert "\n" not in str(info.value)
+
+
+def test_material_form_tells_the_three_forms_apart(tmp_path):
+    assert materials.material_form(SBR) == "dma"
+    (tmp_path / "c.txt").write_text("# creep\nj0 1\n0.5 1\n")
+    assert materials.material_form(tmp_path / "c.txt") == "creep"
+    for content, shown in [("x_over_lambda,ky\n-0.5,1\n", "x_over_lambda ky"),
+                           ("frequency,storage\n1,2\n", "frequency storage"),
+                           ("1.0\n0.5\n", "1.0")]:
+        (tmp_path / "x.txt").write_text(content)
+        with pytest.raises(ValueError, match=r"material=.* is not allowed: a creep series "
+                                             r"\(first line 'J0 <value>'\), a relaxation "
+                                             r"series .* or a DMA master curve .*line 1 "
+                                             f"begins '{re.escape(shown)}'"):
+            materials.material_form(tmp_path / "x.txt")
+    (tmp_path / "b.txt").write_bytes(b"J0 1\x00")
+    with pytest.raises(ValueError, match=r"binary"):
+        materials.material_form(tmp_path / "b.txt")
+
+
+def test_the_modulus_unit_is_read_and_turned_into_pascals(tmp_path):
+    c = read_dma(SBR)
+    assert c.modulus_unit == "MPa"
+    m = fit_prony(c)
+    assert m.fit.modulus_unit == "MPa"
+    pa = m.in_pascals()
+    assert pa.E_r == m.E_r * 1e6 and pa.E == tuple(e * 1e6 for e in m.E)
+    assert pa.theta == m.theta and pa.fit.modulus_unit == "Pa" and pa.in_pascals() == pa
+    assert pa.fit.max_residual == m.fit.max_residual
+    hand = Maxwell(1e6, (2e6,), (1e-3,))
+    assert hand.in_pascals() is hand                      # by hand: Pa by convention
+    # a header without a unit: turning it into pascals would be a guess
+    path = tmp_path / "c.csv"
+    path.write_text(_curve_text(GOOD))
+    assert read_dma(path).modulus_unit is None
+    w, s_, l_ = (np.array(v, dtype=float) for v in zip(*GOOD))
+    fit = fit_prony(MasterCurve(w, s_, l_), max_residual=1.0)
+    with pytest.raises(ValueError, match=r"modulus_unit=None is not allowed: a modulus unit"):
+        fit.in_pascals()
+    # storage and loss in two units: a silent factor, refused
+    path.write_text(_curve_text(GOOD, header="frequency,storage [MPa],loss [kPa]"))
+    with pytest.raises(ValueError, match=r"storage and loss in one unit .*'MPa' and 'kPa'"):
+        read_dma(path)
+
+
 # ----------------------------------------------------------------- the fit figure; independence
 def test_fit_figure_writes_a_png(tmp_path):
     from comparisons import _material_plots

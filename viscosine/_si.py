@@ -3,7 +3,9 @@ dimensionless result turned back into SI.  Nothing here solves anything.
 
 Natural units: lengths 1/k = λ/(2π) (or h), stresses E0/(1 − ν²), times τ (the creep time of the
 standard linear solid, J(t) = 1/E0 − (1/E1) e^{−t/τ}; a relaxation time τ_R of the same solid is
-τ E0/E∞).
+τ E0/E∞).  The solid's time is given by name: ``tau_creep`` (alias ``tau``) or ``tau_relax``
+(`creep_time`).  For any other material (`material_scales`) the reference modulus E_ref is its
+relaxed modulus and the reference time τ_ref is 1 s, so the speed group is V k × 1 s.
 """
 from __future__ import annotations
 
@@ -32,7 +34,7 @@ def _real(name, value, unit, test, allowed):
 class SIScales:
     """The SI problem in dimensionless groups, and the scales that take results back."""
 
-    ratio: float        # E∞/E0
+    ratio: float | None  # E∞/E0 of the standard linear solid (None: another material)
     hk: float           # h k
     speed: float        # V/V0 = V τ k
     load: float | None  # p̃∞, or None under penetration control
@@ -41,16 +43,65 @@ class SIScales:
     estar: float        # E0/(1 − ν²) [Pa]
     wavelength: float   # λ [m]
     amplitude: float    # h [m]
-    tau: float          # creep time [s]
+    tau: float          # the reference time τ_ref [s]: the creep time τ of the solid, else 1 s
     given: dict         # the SI inputs each group comes from, as passed (for refusals)
 
 
-def scales(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=None,
-           penetration=None) -> SIScales:
-    """Validate SI inputs (ValueError naming the parameter, its value and what is allowed)."""
+def creep_time(*, E0, Einf, tau=None, tau_creep=None, tau_relax=None) -> float:
+    """The creep (retardation) time τ of the standard linear solid, from the one time given.
+
+    ``tau`` is ``tau_creep`` (its older name); ``tau_relax`` is the relaxation time τ_R, the
+    time over which the stress relaxes under a step of strain, τ_R = τ E0/E∞, so
+    τ = τ_R E∞/E0.  E0 < E∞ are taken as already checked.
+
+    Raises
+    ------
+    ValueError
+        Not exactly one of the three, or a time that is not finite and > 0.
+    """
+    given = {k: v for k, v in (("tau", tau), ("tau_creep", tau_creep), ("tau_relax", tau_relax))
+             if v is not None}
+    if len(given) != 1:
+        shown = ", ".join(f"{k}={v!r}" for k, v in given.items()) or "tau_creep=None"
+        raise ValueError(f"{shown} is not allowed: give exactly one time of the standard linear "
+                         "solid, tau_creep (its creep, retardation, time; alias tau) or "
+                         "tau_relax (its relaxation time, tau_creep E0/Einf) [s]")
+    (name, value), = given.items()
+    if name == "tau_relax":
+        t = _real(name, value, "s", lambda v: v > 0.0, "a finite relaxation time > 0")
+        return t * (Einf / E0)
+    return _real(name, value, "s", lambda v: v > 0.0, "a finite creep (retardation) time > 0")
+
+
+def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressure=None,
+           penetration=None, tau_creep=None, tau_relax=None) -> SIScales:
+    """Validate SI inputs (ValueError naming the parameter, its value and what is allowed).
+
+    The solid's time is exactly one of ``tau_creep`` (alias ``tau``) and ``tau_relax``
+    (`creep_time`); the speed group is V τ k with τ the creep time.
+    """
     E0 = _real("E0", E0, "Pa", lambda v: v > 0.0, "a finite modulus > 0")
     Einf = _real("Einf", Einf, "Pa", lambda v: v > E0, f"a finite modulus > E0 = {E0!r}")
-    tau = _real("tau", tau, "s", lambda v: v > 0.0, "a finite creep (retardation) time > 0")
+    tau = creep_time(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax)
+    return _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration,
+                   ratio=Einf / E0, given_ratio=Einf)
+
+
+def material_scales(*, E_ref, tau_ref=1.0, nu, wavelength, amplitude, speed, mean_pressure=None,
+                    penetration=None) -> SIScales:
+    """SI inputs for any material, in units of its relaxed modulus ``E_ref`` [Pa] and
+    ``tau_ref`` [s] (1 s: the speed group is then V k × 1 s); ``ratio`` is None.
+
+    ``amplitude`` is h = max(y) − mean(y) of the profile [m].  Raises as `scales`.
+    """
+    E_ref = _real("E_ref", E_ref, "Pa", lambda v: v > 0.0, "a finite relaxed modulus > 0")
+    tau_ref = _real("tau_ref", tau_ref, "s", lambda v: v > 0.0, "a finite time > 0")
+    return _scales(E_ref, tau_ref, nu, wavelength, amplitude, speed, mean_pressure, penetration,
+                   ratio=None, given_ratio=None)
+
+
+def _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration, *, ratio,
+            given_ratio) -> SIScales:
     nu = _real("nu", nu, "-", lambda v: -1.0 < v <= 0.5, "a Poisson ratio in (-1, 0.5]")
     lam = _real("wavelength", wavelength, "m", lambda v: v > 0.0, "a finite length > 0")
     h = _real("amplitude", amplitude, "m", lambda v: v > 0.0, "a finite length > 0")
@@ -66,9 +117,9 @@ def scales(*, E0, Einf, tau, nu, wavelength, amplitude, speed, mean_pressure=Non
     else:
         pen = _real("penetration", penetration, "m", lambda v: 0.0 < v <= h,
                     f"a finite depth in (0, amplitude = {h!r}]") / h
-    given = {"load": mean_pressure, "penetration": penetration, "speed": speed, "ratio": Einf,
-             "hk": amplitude}
-    return SIScales(Einf / E0, h * k, V * tau * k, load, pen, k, estar, lam, h, tau, given)
+    given = {"load": mean_pressure, "penetration": penetration, "speed": speed,
+             "ratio": given_ratio, "hk": amplitude}
+    return SIScales(ratio, h * k, V * tau * k, load, pen, k, estar, lam, h, tau, given)
 
 
 # the SI input behind each dimensionless group, to name it when the group is out of range
@@ -84,7 +135,9 @@ def groups(sc: SIScales, validate, accepted, with_hk=()) -> dict:
     A group outside them is refused naming the SI input it comes from.  ``with_hk`` names the
     groups whose range the road states relative to hk (validated together with it).
     """
-    out = {"speed": sc.speed, "ratio": sc.ratio, "hk": sc.hk}
+    out = {"speed": sc.speed, "hk": sc.hk}
+    if sc.ratio is not None:  # the standard linear solid; any other material is the road's own
+        out["ratio"] = sc.ratio
     if sc.load is not None:
         out["load"] = sc.load
     else:
@@ -94,6 +147,8 @@ def groups(sc: SIScales, validate, accepted, with_hk=()) -> dict:
             validate(**{name: value}, **({"hk": sc.hk} if name in with_hk else {}))
         except ValueError:
             si_name, formula = _SOURCE[name]
+            if sc.ratio is None:  # a material in units of its relaxed modulus and tau_ref
+                formula = formula.replace("E0", "E_ref").replace("V τ", "V τ_ref")
             raise ValueError(f"{si_name}={sc.given[name]!r} is not allowed: it gives {formula} = "
                              f"{value!r}, outside the accepted {accepted[name][2]}") from None
     return out

@@ -23,7 +23,11 @@ Conventions
   modes run the other way); the series is the same.
 * Units: moduli in any one unit, times in any one unit, angular frequencies in rad per that time
   unit.  `Maxwell.creep` takes ``E_ref`` and ``tau_ref`` to return the nondimensional series the
-  BEM road expects (compliances in ``1/E_ref``, times in ``tau_ref``).
+  BEM road expects (compliances in ``1/E_ref``, times in ``tau_ref``).  `Maxwell.in_pascals`
+  turns a fit to data whose header named the modulus unit (`PASCALS`) into Pa.
+* Files: `read_relaxation` (a relaxation series, first line ``E_r <value>``), `read_dma` (a
+  master curve), `read_shift_table`; `material_form` tells a material file's form (`FORMS`)
+  from its first line, ``J0`` marking the creep-series file of ``bem.read_prony``.
 
 The two forms are exactly interconvertible: with ``p = -s`` (s the Laplace variable) the modulus
 ``E(p) = E_r - p sum_i E_i theta_i/(1 - p theta_i)`` is decreasing between its poles
@@ -52,6 +56,10 @@ import numpy as np
 
 #: fewest points of a DMA curve (and of a shift table's pair of columns) that are accepted
 MIN_POINTS = 5
+#: modulus units a DMA header may name (``storage [MPa]``), in pascals (matched ignoring case)
+PASCALS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "n/mm2": 1e6, "n/mm^2": 1e6}
+#: the forms of a material file `material_form` tells apart
+FORMS = ("creep", "relaxation", "dma")
 
 
 def _bad(name, value, allowed) -> ValueError:
@@ -228,6 +236,9 @@ class FitReport:
         The largest relative residual on E' and E'' the fit was allowed.
     source : str or None
         The data file, when the curve was read from one.
+    modulus_unit : str or None
+        The unit of the moduli (``E_r``, ``E_i``) as the data gave it (``"MPa"``), or None
+        when the data did not say.
     """
 
     window: tuple
@@ -242,6 +253,7 @@ class FitReport:
     tan_delta_rms: float
     bound: float
     source: str | None = None
+    modulus_unit: str | None = None
 
     @property
     def max_residual(self) -> float:
@@ -489,6 +501,33 @@ class Maxwell:
         return Maxwell(self.E_r, self.E, tuple(th * a for th in self.theta), temperature=T,
                        fit=fit)
 
+    def in_pascals(self) -> "Maxwell":
+        """The series with its moduli in pascals (times unchanged).
+
+        Returns
+        -------
+        Maxwell
+            A series fitted to data whose header named a modulus unit (``fit.modulus_unit``,
+            one of `PASCALS`) scaled to Pa; a series with no fit (built by hand: its moduli are
+            in Pa by the SI front's convention) as it is.
+
+        Raises
+        ------
+        ValueError
+            A fit to data that named no modulus unit, or a unit not in `PASCALS`: the factor
+            would be a guess.
+        """
+        if self.fit is None:
+            return self
+        unit = self.fit.modulus_unit
+        factor = None if unit is None else PASCALS.get(unit.strip().lower())
+        if factor is None:
+            raise _bad("modulus_unit", unit, "a modulus unit the DMA header names, one of Pa, "
+                       "kPa, MPa, GPa (e.g. 'storage [MPa]'), to express the fit in pascals")
+        fit = replace(self.fit, modulus_unit="Pa")
+        return Maxwell(self.E_r * factor, tuple(e * factor for e in self.E), self.theta,
+                       temperature=self.temperature, fit=fit)
+
 
 # --------------------------------------------------------------------------
 # Text tables (DMA curves, shift tables)
@@ -509,14 +548,11 @@ def _column_name(raw: str) -> tuple:
     return name.strip().lower().replace(" ", "_"), unit
 
 
-def _read_table(path, option: str, columns: dict):
-    """The named columns of a CSV file, with the line number of each row.
+def _data_lines(path, option: str) -> list:
+    """``(line number, fields)`` of each non-comment line of a UTF-8 text file.
 
-    ``columns`` maps each required column to the header names accepted for it.  ``#`` starts a
-    comment; fields are separated by commas (or blanks when a line has no comma); the first
-    non-comment line is the header.  Other columns are ignored.  Returns the columns, the line
-    number of each row and the unit each required column's header gives (or None).  Raises the
-    refusal of ``option=path`` naming the line for anything broken.
+    ``#`` starts a comment; fields are separated by commas (or blanks when a line has no
+    comma).  A missing, binary or non-UTF-8 file is the refusal of ``option=path``.
     """
     where = str(path)
     try:
@@ -534,6 +570,20 @@ def _read_table(path, option: str, columns: dict):
         line = raw.split("#", 1)[0].strip()
         if line:
             rows.append((number, _split(line)))
+    return rows
+
+
+def _read_table(path, option: str, columns: dict):
+    """The named columns of a CSV file, with the line number of each row.
+
+    ``columns`` maps each required column to the header names accepted for it.  ``#`` starts a
+    comment; fields are separated by commas (or blanks when a line has no comma); the first
+    non-comment line is the header.  Other columns are ignored.  Returns the columns, the line
+    number of each row and the unit each required column's header gives (or None).  Raises the
+    refusal of ``option=path`` naming the line for anything broken.
+    """
+    where = str(path)
+    rows = _data_lines(path, option)
     need = ", ".join(columns)
     if not rows:
         raise _bad(option, where, f"a header line naming the columns {need}, then data (this "
@@ -567,6 +617,115 @@ def _read_table(path, option: str, columns: dict):
         lines.append(number)
     units = {key: names[i][1] for key, i in index.items()}
     return {k: np.array(v) for k, v in out.items()}, lines, units
+
+
+# --------------------------------------------------------------------------
+# Prony-series files and the form of a material file
+# --------------------------------------------------------------------------
+def read_relaxation(path) -> Maxwell:
+    """Read a relaxation-form (generalised Maxwell) Prony series from a text file.
+
+    Format (``#`` starts a comment, fields separated by blanks or commas)::
+
+        # E(t) = E_r + sum_i E_i exp(-t/theta_i)
+        E_r 1.0         # relaxed (long-time) modulus
+        2.0 0.3333      # one line per term: E_i (modulus)  theta_i (relaxation time)
+
+    The ``E_r`` line (``E_r`` or ``Er``, any case) is required and comes first; there may be
+    no terms (an elastic material).  It is the relaxation twin of the creep-series file of
+    ``bem.read_prony`` (a first line ``J0 <value>``, then ``J_i tau_i`` with creep times), and
+    the keyword of the first line says which of the two a file is.  Moduli and times are in
+    the file's own units; `Maxwell.creep` converts exactly.
+
+    Returns
+    -------
+    Maxwell
+
+    Raises
+    ------
+    ValueError
+        One line ``relaxation='path' is not allowed: ...`` naming the line at fault: a broken
+        file (as for `read_dma`), a missing ``E_r`` line, a term line that is not two numbers,
+        a non-finite value, ``E_r <= 0``, ``E_i < 0`` or ``theta_i <= 0``.
+    """
+    where = str(path)
+    rows = [(n, [t for f in fields for t in f.split()]) for n, fields in
+            _data_lines(path, "relaxation")]
+    if not rows:
+        raise _bad("relaxation", where, "a first line 'E_r <value>' then lines 'E_i theta_i' "
+                   "(this file is empty or only comments)")
+    first_line, first = rows[0]
+    if first[0].lower() not in ("e_r", "er") or len(first) != 2:
+        raise _bad("relaxation", where, f"a first line 'E_r <value>' then lines 'E_i theta_i' "
+                   f"(line {first_line}: {' '.join(first)!r})")
+
+    def numbers(number, tokens):
+        out = []
+        for tok in tokens:
+            try:
+                v = float(tok)
+            except ValueError:
+                raise _bad("relaxation", where, f"numeric fields (line {number}: {tok!r} is "
+                           "not a number)") from None
+            if not math.isfinite(v):
+                raise _bad("relaxation", where, f"finite numbers (line {number}: {tok!r})")
+            out.append(v)
+        return out
+
+    (e_r,) = numbers(first_line, first[1:])
+    if not e_r > 0.0:
+        raise _bad("relaxation", where, f"a relaxed modulus E_r > 0 (line {first_line}: "
+                   f"{e_r!r})")
+    amps, times = [], []
+    for number, fields in rows[1:]:
+        if len(fields) != 2:
+            raise _bad("relaxation", where, f"exactly two numbers 'E_i theta_i' per term line "
+                       f"(line {number} has {len(fields)})")
+        e, th = numbers(number, fields)
+        if not e >= 0.0:
+            raise _bad("relaxation", where, f"amplitudes E_i >= 0 (line {number}: {e!r})")
+        if not th > 0.0:
+            raise _bad("relaxation", where, f"relaxation times theta_i > 0 (line {number}: "
+                       f"{th!r})")
+        amps.append(e)
+        times.append(th)
+    return Maxwell(e_r, tuple(amps), tuple(times))
+
+
+def material_form(path) -> str:
+    """Which of the accepted `FORMS` a material file is, from its first non-comment line.
+
+    * ``"creep"``: ``J0 <value>`` (a creep-series file, ``bem.read_prony``);
+    * ``"relaxation"``: ``E_r <value>`` (a relaxation-series file, `read_relaxation`);
+    * ``"dma"``: a CSV header naming the columns frequency, storage and loss (`read_dma`).
+
+    Raises
+    ------
+    ValueError
+        One line ``material='path' is not allowed: ...``: an unreadable, binary, non-UTF-8 or
+        empty file, or a first line that is none of the three.
+    """
+    where = str(path)
+    rows = _data_lines(path, "material")
+    accepted = ("a creep series (first line 'J0 <value>'), a relaxation series (first line "
+                "'E_r <value>') or a DMA master curve (a CSV header naming frequency, storage, "
+                "loss)")
+    if not rows:
+        raise _bad("material", where, f"{accepted} (this file is empty or only comments)")
+    number, fields = rows[0]
+    tokens = [t for f in fields for t in f.split()]
+    key = tokens[0].lower()
+    if key == "j0":
+        return "creep"
+    if key in ("e_r", "er"):
+        return "relaxation"
+    names = {_column_name(f)[0] for f in fields}
+    if all(names & set(aliases) for aliases in _DMA_COLUMNS.values()):
+        return "dma"
+    shown = " ".join(tokens)
+    if len(shown) > 40:
+        shown = shown[:36] + " ..."
+    raise _bad("material", where, f"{accepted} (line {number} begins {shown!r})")
 
 
 # --------------------------------------------------------------------------
@@ -643,6 +802,8 @@ class MasterCurve:
         Relative scatter tolerated by the physical checks (0: none).
     source : str, optional
         Where the data came from (a file name), for provenance.
+    modulus_unit : str, optional
+        The unit of ``storage`` and ``loss`` (``"MPa"``), when known; see `PASCALS`.
 
     Raises
     ------
@@ -657,6 +818,7 @@ class MasterCurve:
     loss: np.ndarray
     noise: float = 0.0
     source: str | None = None
+    modulus_unit: str | None = None
 
     def __post_init__(self):
         noise = _real("noise", self.noise, lambda v: 0.0 <= v < 1.0,
@@ -712,7 +874,9 @@ def read_dma(path, *, kind: str = "E", nu=None, frequency_unit: str | None = Non
 
     The header names the columns ``frequency``, ``storage`` and ``loss`` (any order, any case,
     an optional unit in brackets such as ``storage [MPa]``); other columns are ignored.  Fields
-    are separated by commas (or blanks).  Moduli are kept in the file's unit.
+    are separated by commas (or blanks).  Moduli are kept in the file's unit, which the curve
+    records (``modulus_unit``) when the header gives one; storage and loss in different units
+    are refused.
 
     Parameters
     ----------
@@ -769,12 +933,18 @@ def read_dma(path, *, kind: str = "E", nu=None, frequency_unit: str | None = Non
                    f"({units['frequency']!r} in {str(path)!r}), or None")
     omega = cols["frequency"] * (2.0 * math.pi if frequency_unit == "Hz" else 1.0)
     storage, loss = cols["storage"] * factor, cols["loss"] * factor
+    given = {u for u in (units["storage"], units["loss"]) if u}
+    if len(given) > 1:
+        raise _bad("dma", str(path), f"storage and loss in one unit (the header gives "
+                   f"{units['storage']!r} and {units['loss']!r}: a silent factor otherwise)")
+    modulus_unit = given.pop() if given else None
 
     def where(j, text):
         at = "" if j is None else f" (line {lines[j]})"
         return f"dma={str(path)!r} is not allowed: {text}{at}"
     _check_curve(omega, storage, loss, noise, where)
-    return MasterCurve(omega, storage, loss, noise=noise, source=str(path))
+    return MasterCurve(omega, storage, loss, noise=noise, source=str(path),
+                       modulus_unit=modulus_unit)
 
 
 # --------------------------------------------------------------------------
@@ -857,7 +1027,8 @@ def fit_prony(curve: MasterCurve, *, per_decade: float = 2, extend: float = 1.0,
     report = FitReport(window=curve.window, per_decade=per_decade, candidates=count,
                        terms=int(keep.sum()), storage_max=stats[0][0], storage_rms=stats[0][1],
                        loss_max=stats[1][0], loss_rms=stats[1][1], tan_delta_max=stats[2][0],
-                       tan_delta_rms=stats[2][1], bound=bound, source=curve.source)
+                       tan_delta_rms=stats[2][1], bound=bound, source=curve.source,
+                       modulus_unit=curve.modulus_unit)
     if report.max_residual > bound:
         raise _bad("max_residual", bound, f"a bound the fit meets: the best non-negative "
                    f"Prony series with {per_decade:g} times per decade misses the data by "

@@ -1,0 +1,306 @@
+"""Material inputs of the command line: a creep-series, relaxation-series or DMA file, moved to a
+temperature, turned into the BEM road's creep series, and described in every record.
+
+A material file is one of `viscosine.materials.FORMS`, told apart by its first line
+(`viscosine.materials.material_form`):
+
+* ``creep``: ``J0 <value>`` then ``J_i tau_i`` (`bem.read_prony`; creep, i.e. retardation, times);
+* ``relaxation``: ``E_r <value>`` then ``E_i theta_i`` (`viscosine.materials.read_relaxation`;
+  relaxation times), converted exactly (`Maxwell.creep`);
+* ``dma``: a CSV master curve (`viscosine.materials.read_dma`), fitted with
+  `viscosine.materials.fit_prony`; a fit missing the data by more than its bound is refused.
+
+Reference units (what the dimensionless groups are measured in; every record states them):
+
+* a creep or relaxation file: its own units.  E_ref is its modulus unit (``load`` is
+  p∞(1 − ν²)/E_ref) and τ_ref its time unit (``speed`` is V τ_ref k), so the two forms of one
+  material written in one set of units give the same point;
+* a DMA curve: E_ref is the relaxed modulus E_r of the fit (the paper's E0, in the data's unit),
+  τ_ref is 1 s (the data's frequencies are in rad/s or Hz): ``speed`` is V k × 1 s;
+* the standard linear solid (no file): E_ref = E0 and τ_ref = τ, its **creep** time (eq. 2.3);
+  its relaxation time is τ E0/E∞;
+* with ``--units SI`` every file material is in units of its relaxed modulus E_r [Pa] and 1 s
+  (series files in Pa and s; a DMA curve in the modulus unit its header names).
+
+A temperature (``--temperature T`` with ``--wlf C1 C2 TREF`` or ``--shift-table FILE``) multiplies
+every time of the material by a_T (thermorheologically simple): the file is the material at the
+shift's reference temperature.  τ_ref is not shifted, so a point at T equals the point at T_ref
+at the speed multiplied by a_T.
+
+Extrapolation: a DMA fit is trusted inside the measured window only.  A point probes the
+frequencies ω_n = k_n V = n k V of the harmonics that carry the contact, n = 1 … ⌈λ/2a⌉ (a
+contact of width 2a is built from harmonics up to wavelengths of about its width; in full
+contact of the sinusoid only n = 1); when ω_1 … ω_top leaves the window (shifted to T), the record
+carries a warning (`viscosine.materials.Maxwell.extrapolation_warning`).
+"""
+from __future__ import annotations
+
+import hashlib
+import math
+import os
+from typing import NamedTuple
+
+TIME_UNIT_SLS = ("speed = V tau_ref k with tau_ref = tau, the creep (retardation) time of the "
+                 "standard linear solid (eq. 2.3); its relaxation time is tau E0/Einf = "
+                 "tau/ratio")
+
+
+class Material(NamedTuple):
+    """A material read for the BEM road."""
+
+    info: dict      # JSON-ready description (goes into the spec and every record)
+    prony: object   # bem.Prony: the creep series in E_ref and tau_ref
+    model: object   # viscosine.materials.Maxwell at the temperature (None for a creep file)
+
+
+def sls_description(ratio) -> dict:
+    """The record's ``material`` of the standard linear solid of E∞/E0 = ratio."""
+    return {"form": "standard_linear_solid", "path": None, "sha256": None, "terms": 1,
+            "ratio": ratio,
+            "E_ref": 1.0, "E_ref_is": "E0, the relaxed modulus of the solid",
+            "tau_ref": 1.0, "tau_ref_is": "tau, the creep (retardation) time of the solid "
+                                           "(eq. 2.3); its relaxation time is tau/ratio",
+            "time_unit": TIME_UNIT_SLS}
+
+
+def _sha256(data: bytes) -> str:
+    return hashlib.sha256(data).hexdigest()
+
+
+def shift_from_options(wlf=None, shift_table=None):
+    """The shift of ``--wlf C1 C2 TREF`` or ``--shift-table FILE``: (a `viscosine.materials.WLF`
+    or `ShiftTable`, its JSON description), or (None, None); ValueError naming the option."""
+    from viscosine import materials as vm
+    if wlf is not None:
+        c1, c2, t_ref = wlf
+        try:
+            s = vm.WLF(c1, c2, t_ref)
+        except ValueError as exc:
+            raise ValueError(f"--wlf {c1!r} {c2!r} {t_ref!r} is not allowed: {_why(exc)}") from None
+        return s, {"kind": "WLF", "C1": s.C1, "C2": s.C2, "T_ref": s.T_ref}
+    if shift_table is not None:
+        from .runner import file_bytes
+        data = file_bytes("--shift-table", shift_table)
+        try:
+            s = vm.read_shift_table(shift_table)
+        except ValueError as exc:
+            raise ValueError(f"--shift-table {shift_table}: {_why(exc)}") from None
+        return s, {"kind": "table", "path": os.path.abspath(shift_table),
+                   "sha256": _sha256(data), "T": [s.T[0], s.T[-1]]}
+    return None, None
+
+
+def _why(exc) -> str:
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__
+
+
+def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
+         per_decade=None, si=False, option="--material") -> Material:
+    """Read a material file of any accepted form, at a temperature, for the BEM road.
+
+    Parameters
+    ----------
+    path : str
+        The file.
+    temperature : float, optional
+        With exactly one of ``wlf`` ((C1, C2, T_ref)) and ``shift_table`` (a file).
+    max_residual, per_decade : float, optional
+        The DMA fit's bound on its largest relative residual, and its relaxation times per
+        decade (None: the defaults of `viscosine.materials.fit_prony`); refused for a series
+        file.
+    si : bool
+        Units of the file: SI (series in Pa and s; a DMA curve in the unit its header names),
+        reference modulus E_r [Pa] and 1 s; else the file's own units (module docstring).
+
+    Raises
+    ------
+    ValueError
+        One line naming the option, the file and what is allowed.
+    """
+    import bem
+    from viscosine import materials as vm
+
+    from .runner import file_bytes
+    data = file_bytes(option, path)
+    where = f"{option} {path}"
+    if (wlf is None and shift_table is None) != (temperature is None):
+        if temperature is None:
+            raise ValueError(f"{'--wlf' if wlf is not None else '--shift-table'} is not allowed "
+                             "without --temperature: it shifts the material to that temperature")
+        raise ValueError(f"--temperature {temperature!r} is not allowed without --wlf C1 C2 TREF "
+                         "or --shift-table FILE: the shift a_T(T) of the material's times")
+    try:
+        form = vm.material_form(path)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {_why(exc)}") from None
+    if form != "dma" and (max_residual is not None or per_decade is not None):
+        given = "--max-residual" if max_residual is not None else "--per-decade"
+        raise ValueError(f"{given} is not allowed here: it sets the Prony fit of a DMA master "
+                         f"curve, and {path} is a {form} series")
+    shift, shift_info = shift_from_options(wlf, shift_table)
+    fit_info = None
+    try:
+        if form == "creep":
+            prony = bem.read_prony(path)
+            model = None
+            terms = len(prony.J)
+            e_ref = 1.0
+            if si:  # compliances in 1/Pa: units of the relaxed modulus 1/J0
+                e_ref = 1.0 / prony.J0
+                prony = bem.Prony(1.0, tuple(j * e_ref for j in prony.J), prony.tau)
+        else:
+            if form == "relaxation":
+                model = vm.read_relaxation(path)
+            else:
+                model = _fit(vm, vm.read_dma(path), max_residual, per_decade)
+                if si:
+                    model = model.in_pascals()
+            terms = len([e for e in model.E if e > 0.0])
+            e_ref = model.E_r if (form == "dma" or si) else 1.0
+            prony = bem.Prony(*model.creep(E_ref=e_ref, tau_ref=1.0))
+            fit_info = _fit_info(model)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {_why(exc)}") from None
+    info = {"form": form, "path": os.path.abspath(path), "sha256": _sha256(data),
+            "terms": terms, **references(form, si, e_ref, fit_info),
+            "temperature": None, "shift": None, "log10_aT": None,
+            "fit": fit_info, "units": "SI" if si else "file"}
+    m = Material(info, prony, model)
+    if shift is not None:
+        m = at_temperature(m, shift, shift_info, temperature,
+                           "--wlf" if wlf is not None else f"--shift-table {shift_table}")
+    return m
+
+
+def _fit_info(model):
+    f = model.fit
+    if f is None:
+        return None
+    return {"max_residual": f.max_residual, "bound": f.bound, "storage_max": f.storage_max,
+            "storage_rms": f.storage_rms, "loss_max": f.loss_max, "loss_rms": f.loss_rms,
+            "tan_delta_max": f.tan_delta_max, "per_decade": f.per_decade,
+            "candidates": f.candidates, "modulus_unit": f.modulus_unit,
+            "window": list(f.window)}
+
+
+def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") -> Material:
+    """The material ``m`` (at the shift's reference temperature) moved to ``temperature``.
+
+    Every time is multiplied by a_T (`viscosine.materials.Maxwell.at_temperature`; a creep
+    series' times directly: both forms scale alike), the measured window divided by it; the
+    moduli and the reference units E_ref, tau_ref are unchanged.
+
+    Raises
+    ------
+    ValueError
+        ``--temperature T is not allowed: ...``: outside a shift table, at or below the WLF pole.
+    """
+    import bem
+    try:
+        log_a = float(shift.log10_aT(temperature)) + 0.0  # -0.0 at T_ref reads 0.0
+    except ValueError as exc:
+        raise ValueError(f"--temperature {temperature!r} is not allowed: {_why(exc)} "
+                         f"({option})") from None
+    a = 10.0 ** log_a
+    model = m.model
+    if model is None:
+        p = m.prony
+        prony = bem.Prony(p.J0, p.J, tuple(t * a for t in p.tau))
+    else:
+        model = model.at_temperature(shift, temperature)
+        prony = bem.Prony(*model.creep(E_ref=m.info["E_ref"] or 1.0, tau_ref=1.0))
+    info = {**m.info, "temperature": float(temperature), "shift": shift_info,
+            "log10_aT": log_a, "fit": _fit_info(model) if model is not None else None}
+    return Material(info, prony, model)
+
+
+def from_model(model) -> Material:
+    """A `viscosine.materials.Maxwell` (moduli in Pa, times in s; a DMA fit in the unit its data
+    named) as the material of an SI problem: E_ref its relaxed modulus, tau_ref 1 s."""
+    import bem
+    from viscosine import materials as vm
+    if not isinstance(model, vm.Maxwell):
+        raise ValueError(f"material={model!r} is not allowed: a file name or a "
+                         "viscosine.materials.Maxwell (Pa, s)")
+    model = model.in_pascals()
+    form = "dma" if model.fit is not None else "relaxation"
+    source = model.fit.source if model.fit is not None else None
+    fit_info = _fit_info(model)
+    sha = None
+    if source and os.path.isfile(source):
+        with open(source, "rb") as fh:
+            sha = _sha256(fh.read())
+    info = {"form": form, "path": source, "sha256": sha,
+            "terms": len([e for e in model.E if e > 0.0]),
+            **references(form, True, model.E_r, fit_info),
+            "temperature": model.temperature, "shift": None, "log10_aT": None,
+            "fit": fit_info, "units": "SI"}
+    return Material(info, bem.Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model)
+
+
+def _fit(vm, curve, bound, per_decade):
+    given = {k: v for k, v in (("max_residual", bound), ("per_decade", per_decade))
+             if v is not None}
+    try:
+        return vm.fit_prony(curve, **given)
+    except ValueError as exc:
+        text = _why(exc)
+        if text.startswith("max_residual="):  # the option the user typed
+            text = "--max-residual " + text[len("max_residual="):]
+        elif text.startswith("per_decade="):
+            text = "--per-decade " + text[len("per_decade="):]
+        raise ValueError(text) from None
+
+
+def references(form, si, e_ref, fit_info) -> dict:
+    """E_ref, tau_ref and what they are, and the record's time_unit sentence."""
+    if si:
+        e_is = "E_r, the relaxed modulus of the material [Pa]"
+        t_is = "1 s"
+    elif form == "dma":
+        unit = (fit_info or {}).get("modulus_unit") or "the data's modulus unit"
+        e_is = f"E_r, the relaxed modulus of the Prony fit [{unit}]"
+        t_is = "1 s, the time unit of the DMA frequencies (rad/s or Hz)"
+    else:
+        e_is = ("the modulus unit of the file (compliances J0, J_i in 1/E_ref)" if form == "creep"
+                else "the modulus unit of the file (moduli E_r, E_i in E_ref)")
+        t_is = ("the time unit of the file, whose times are creep (retardation) times"
+                if form == "creep" else
+                "the time unit of the file, whose times are relaxation times (converted "
+                "exactly to creep times)")
+    kind = {"creep": "creep-series file", "relaxation": "relaxation-series file",
+            "dma": "DMA master curve"}[form]
+    return {"E_ref": e_ref, "E_ref_is": e_is, "tau_ref": 1.0, "tau_ref_is": t_is,
+            "time_unit": f"speed = V tau_ref k with tau_ref = {t_is} ({kind}); load = "
+                         "p_inf (1 - nu^2)/E_ref"}
+
+
+def reread(info) -> Material:
+    """The material of a spec's description (a worker that did not receive the parsed one)."""
+    shift = info.get("shift") or {}
+    fit = info.get("fit") or {}
+    return read(info["path"], temperature=info.get("temperature"),
+                wlf=(shift["C1"], shift["C2"], shift["T_ref"]) if shift.get("kind") == "WLF"
+                else None,
+                shift_table=shift.get("path") if shift.get("kind") == "table" else None,
+                max_residual=fit.get("bound"), per_decade=fit.get("per_decade"),
+                si=info.get("units") == "SI")
+
+
+def probed(speed, contact_fraction):
+    """(ω_lo, ω_hi) in rad per τ_ref: the harmonics n = 1 … ⌈1/contact_fraction⌉ at speed w."""
+    top = max(1, math.ceil(1.0 / max(float(contact_fraction), 1e-300) - 1e-9))
+    return speed, speed * top
+
+
+def extrapolation(model, speed, contact_fraction):
+    """The warning of a DMA fit probed outside its measured window, or None."""
+    if model is None or getattr(model, "fit", None) is None or not speed > 0.0:
+        return None
+    lo, hi = probed(speed, contact_fraction)
+    text = model.extrapolation_warning(lo, hi)
+    if text is None:
+        return None
+    return (f"{text} (harmonics n = 1..{round(hi / lo)} of the contact at speed {speed:.4g}; "
+            "frequencies in rad/s)")

@@ -1,0 +1,507 @@
+"""`python -m comparisons mastercurve`: the friction master curve μ(V) of a material at several
+temperatures, every point a boundary-element solve.
+
+    python -m comparisons mastercurve --material FILE (--wlf C1 C2 TREF | --shift-table FILE)
+        --temperatures T [T ...] --speeds V [V ...] --load P --wavelength L --amplitude H
+        --nu NU [--nodes N | --rtol R] [--max-residual B] [--per-decade K] [--out DIR]
+
+SI throughout: ``--speeds`` V [m/s] (values or log ranges START:STOP:COUNT), ``--load`` the mean
+pressure p∞ [Pa], ``--wavelength`` λ and ``--amplitude`` h [m] of the rigid sinusoid.  The
+material is any file `comparisons._materials` reads (creep or relaxation series in Pa and s, or
+a DMA master curve whose header names its modulus unit), taken at the shift's reference
+temperature; at T every time is multiplied by a_T(T).  Its reference units are its relaxed
+modulus E_r and 1 s (the speed group is V k × 1 s), the same at every temperature, so a point
+(V, T) is the point (a_T V, T_ref): the curves collapse onto one against the reduced speed a_T V.
+
+Each point goes through `comparisons.runner.run` (`bem.solve` and the last line of defence).
+Written into ``--out`` (default ``./mastercurve``):
+
+* ``points.csv``: one row per finished point, appended and flushed as each is done (an
+  interrupted run loses nothing; the same command run again takes the finished points from it
+  and solves the rest);
+* ``mastercurve.json``: the parameters (with the material's file, SHA-256, fit residuals) and
+  every point, when the run ends;
+* ``mastercurve.png``: μ against log V, one curve per temperature, and μ against the reduced
+  speed a_T V (hollow markers: the modulus was extrapolated beyond the DMA window).
+
+Without ``--nodes`` the mesh is refined until the estimated relative error of μ (and the other
+scalars) is below ``--rtol`` (default 1e-3): 0.35–1.5 s a point on a quiet core for the suite's
+SBR curve at λ = 1 mm, h = 0.1 mm, p∞ = 0.1 MPa (docs/materials.md).
+
+References
+----------
+Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392 (2014): eq. (3.1) (the
+friction), eqs (2.7)–(2.8) (the modulus at the sliding frequency k V).
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+#: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
+DEFAULT_RTOL = 1e-3
+#: the columns of points.csv (and the keys of each point in mastercurve.json)
+COLUMNS = ("temperature", "speed", "log10_aT", "reduced_speed", "success", "mu", "mu_error",
+           "friction_stress", "contact_fraction", "load", "speed_group", "nodes", "seconds",
+           "extrapolated", "message")
+UNITS = ("units: temperature in the unit of the shift; speed and reduced_speed (a_T V) in m/s; "
+         "friction_stress in Pa; mu_error the estimated relative error of mu (NaN where the "
+         "solver gives none); load p_inf (1 - nu^2)/E_ref and speed_group V k (1 s) the dimensionless groups "
+         "(E_ref the relaxed modulus of the material); extrapolated 1 when the contact's "
+         "harmonics probe the modulus outside the DMA window")
+
+
+@dataclass(frozen=True)
+class FrictionMasterCurve:
+    """μ(V, T) of one material, one row per (temperature, speed), temperatures outer.
+
+    Attributes
+    ----------
+    temperature, speed, log10_aT, reduced_speed : ndarray
+        T (unit of the shift), V [m/s], log10 a_T(T), a_T V [m/s] (the speed at T_ref that
+        gives the same point).
+    success : ndarray of bool
+        Whether the point is an answer (the others are NaN with their ``message``).
+    mu, mu_error : ndarray
+        Friction coefficient τf/p∞ (eq. 3.1) and its estimated relative error (NaN where
+        the solver gives none: a fixed mesh may not).
+    friction_stress, contact_fraction : ndarray
+        τf [Pa] and 2a/λ.
+    extrapolated : ndarray of bool
+        The contact's harmonics k_n V (n = 1 … ⌈λ/2a⌉) leave the DMA window at T.
+    message : tuple of str
+        The solver's message, or why the point failed; extrapolation warnings appended.
+    parameters : dict
+        Everything that produced the table (material file, SHA-256, fit, shift, geometry).
+    rows : tuple of dict
+        The points as written to points.csv (keys `COLUMNS`).
+    """
+
+    temperature: np.ndarray
+    speed: np.ndarray
+    log10_aT: np.ndarray
+    reduced_speed: np.ndarray
+    success: np.ndarray
+    mu: np.ndarray
+    mu_error: np.ndarray
+    friction_stress: np.ndarray
+    contact_fraction: np.ndarray
+    extrapolated: np.ndarray
+    message: tuple
+    parameters: dict = field(repr=False)
+    rows: tuple = field(default=(), repr=False)
+
+    @classmethod
+    def from_rows(cls, rows, parameters):
+        def col(name, dtype=float):
+            return np.array([r[name] for r in rows], dtype=dtype)
+        return cls(col("temperature"), col("speed"), col("log10_aT"), col("reduced_speed"),
+                   col("success", bool), col("mu"), col("mu_error"), col("friction_stress"),
+                   col("contact_fraction"), col("extrapolated", bool),
+                   tuple(r["message"] for r in rows), parameters, tuple(rows))
+
+
+def _nan(v):
+    return float("nan") if v is None else float(v)
+
+
+def _row(T, V, log_a, out):
+    """One point of the table from `runner.run`'s answer."""
+    rec = out.get("record") or {}
+    warn = [w for w in out.get("warnings") or [] if w.startswith("extrapolation:")]
+    ok = bool(out["ok"])
+    est = rec.get("error_estimate") or {}
+    si = rec.get("si") or {}
+    message = rec.get("message") if ok else out.get("error")
+    return {"temperature": float(T), "speed": float(V), "log10_aT": float(log_a),
+            "reduced_speed": float(V) * 10.0 ** log_a, "success": ok,
+            "mu": _nan(rec.get("mu")) if ok else float("nan"),
+            "mu_error": _nan(est.get("mu")) if ok else float("nan"),
+            "friction_stress": _nan(si.get("friction_stress")) if ok else float("nan"),
+            "contact_fraction": _nan(rec.get("contact_fraction")) if ok else float("nan"),
+            "load": float(out["spec"]["load"]), "speed_group": float(out["spec"]["speed"]),
+            "nodes": rec.get("nodes") if ok else None, "seconds": float(out.get("seconds", 0.0)),
+            "extrapolated": bool(warn), "message": "; ".join([str(message or "")] + warn)}
+
+
+def _key(T, V):
+    return (repr(float(T)), repr(float(V)))
+
+
+def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
+                          amplitude, nu, nodes=None, rtol=DEFAULT_RTOL, max_residual=None,
+                          per_decade=None, done=None, on_point=None) -> FrictionMasterCurve:
+    """Solve μ at every (temperature, speed) through `bem.solve` (via `runner.run`).
+
+    Parameters
+    ----------
+    material : str or viscosine.materials.Maxwell
+        A material file (creep or relaxation series in Pa and s, or a DMA curve whose header
+        names its modulus unit), or a series (Pa, s; a DMA fit in its data's unit), at the
+        shift's reference temperature.
+    shift : viscosine.materials.WLF or viscosine.materials.ShiftTable
+        a_T(T): every time of the material is multiplied by it at T.
+    temperatures : sequence of float
+        In the unit of the shift (a table must cover them).
+    speeds : sequence of float
+        V [m/s], > 0.
+    mean_pressure : float
+        p∞ [Pa].
+    wavelength, amplitude : float
+        λ and h of the rigid sinusoid [m].
+    nu : float
+        Poisson's ratio.
+    nodes : int, optional
+        A fixed mesh; default: adaptive to ``rtol``.
+    rtol : float
+        Accuracy of the adaptive mesh (default `DEFAULT_RTOL`).
+    max_residual, per_decade : float, optional
+        The DMA fit's bound and times per decade (file materials).
+    done : dict, optional
+        Rows already solved, keyed by ``(repr(T), repr(V))``: taken as they are.
+    on_point : callable, optional
+        ``on_point(row, index, total, reused)`` after each point (to write it, show progress).
+
+    Returns
+    -------
+    FrictionMasterCurve
+
+    Raises
+    ------
+    ValueError
+        Bad input, before any point is solved: one line naming it as the command line does
+        (``--load``, ``--speed``, ``--temperature``, ``--material FILE: ...``).
+
+    References
+    ----------
+    Menga et al. (2014), eq. (3.1); eqs (2.7)–(2.8).
+    """
+    plan, parameters = prepare(material, shift=shift, temperatures=temperatures, speeds=speeds,
+                               mean_pressure=mean_pressure, wavelength=wavelength,
+                               amplitude=amplitude, nu=nu, nodes=nodes, rtol=rtol,
+                               max_residual=max_residual, per_decade=per_decade)
+    return solve(plan, parameters, done=done, on_point=on_point)
+
+
+def solve(plan, parameters, *, done=None, on_point=None) -> FrictionMasterCurve:
+    """Solve the points of `prepare`'s plan (those not in ``done``), in order."""
+    from . import runner
+    rows = []
+    total = len(plan)
+    for i, (T, V, log_a, spec) in enumerate(plan):
+        old = (done or {}).get(_key(T, V))
+        row = old if old is not None else _row(T, V, log_a, runner.run(spec))
+        rows.append(row)
+        if on_point is not None:
+            on_point(row, i, total, old is not None)
+    return FrictionMasterCurve.from_rows(rows, parameters)
+
+
+def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength, amplitude, nu,
+            nodes=None, rtol=DEFAULT_RTOL, max_residual=None, per_decade=None, shift_info=None):
+    """Every input checked and every point's spec built, before any solve.
+
+    Returns ``([(T, V, log10 a_T, spec), ...], parameters)``; raises ValueError (one line).
+    """
+    from viscosine import materials as vm
+
+    from . import _materials, runner
+    temps = [float(t) for t in temperatures]
+    vs = [float(v) for v in speeds]
+    if not temps:
+        raise ValueError("temperatures=[] is not allowed: at least one temperature")
+    if not vs:
+        raise ValueError("speeds=[] is not allowed: at least one speed [m/s]")
+    for v in vs:
+        if not (math.isfinite(v) and v > 0.0):
+            raise ValueError(f"speed={v!r} is not allowed: a finite sliding speed > 0 [m/s]")
+    if not isinstance(shift, (vm.WLF, vm.ShiftTable)):
+        raise ValueError(f"shift={shift!r} is not allowed: a viscosine.materials.WLF or "
+                         "ShiftTable (a_T of the material's times)")
+    if shift_info is None:
+        shift_info = ({"kind": "WLF", "C1": shift.C1, "C2": shift.C2, "T_ref": shift.T_ref}
+                      if isinstance(shift, vm.WLF) else
+                      {"kind": "table", "T": [shift.T[0], shift.T[-1]]})
+    if isinstance(material, (str, os.PathLike)):
+        base = _materials.read(os.fspath(material), max_residual=max_residual,
+                               per_decade=per_decade, si=True)
+    else:
+        if max_residual is not None or per_decade is not None:
+            raise ValueError("max_residual, per_decade are not allowed with a Maxwell series: "
+                             "they set the fit of a DMA file")
+        base = _materials.from_model(material)
+    si = {"nu": nu, "wavelength": wavelength, "amplitude": amplitude}
+    groups = runner.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base)
+    plan = []
+    for T in temps:
+        m = _materials.at_temperature(base, shift, shift_info, T, option=(
+            "--wlf" if isinstance(shift, vm.WLF) else "--shift-table"))
+        for V, w in zip(vs, groups["speed"]):
+            spec = dict.fromkeys(runner.SPEC_KEYS)
+            spec.update(solver="bem", load=groups["load"][0], speed=w, hk=groups["hk"],
+                        nodes=nodes, rtol=None if nodes is not None else rtol,
+                        material=m.info, _material=m, si=groups["si"])
+            plan.append((T, V, m.info["log10_aT"], spec))
+        runner.validate(plan[-1][3])  # this temperature's material, before any work
+    parameters = {"material": base.info, "shift": shift_info, "temperatures": temps,
+                  "speeds": vs, "mean_pressure": float(mean_pressure),
+                  "wavelength": float(wavelength), "amplitude": float(amplitude),
+                  "nu": float(nu), "nodes": nodes, "rtol": None if nodes is not None else rtol,
+                  "load": groups["load"][0], "hk": groups["hk"],
+                  "time_unit": base.info["time_unit"]}
+    return plan, parameters
+
+
+# ------------------------------------------------------------------------------ files
+def _csv_value(v):
+    if isinstance(v, bool):
+        return "1" if v else "0"
+    if v is None:
+        return ""
+    if isinstance(v, float):
+        return repr(v)
+    if isinstance(v, str):
+        return '"' + v.replace('"', "'").replace("\n", " ") + '"'
+    return str(v)
+
+
+def _parameters_line(parameters):
+    return "parameters: " + json.dumps(parameters, sort_keys=True, allow_nan=False)
+
+
+def read_points(path):
+    """(parameters line, rows keyed by (repr T, repr V)) of a points.csv, or (None, {})."""
+    import csv
+    if not os.path.exists(path):
+        return None, {}
+    with open(path, encoding="utf-8") as fh:
+        lines = fh.read().splitlines()
+    params = next((ln[2:] for ln in lines if ln.startswith("# parameters: ")), None)
+    body = [ln for ln in lines if ln and not ln.startswith("#")]
+    rows = {}
+    if body:
+        for r in csv.DictReader(body):
+            if None in r or any(v is None for v in r.values()):
+                continue  # a line cut short by an interruption: solved again
+            try:
+                row = {"temperature": float(r["temperature"]), "speed": float(r["speed"]),
+                       "log10_aT": float(r["log10_aT"]),
+                       "reduced_speed": float(r["reduced_speed"]),
+                       "success": r["success"] == "1", "mu": float(r["mu"]),
+                       "mu_error": float(r["mu_error"]),
+                       "friction_stress": float(r["friction_stress"]),
+                       "contact_fraction": float(r["contact_fraction"]),
+                       "load": float(r["load"]), "speed_group": float(r["speed_group"]),
+                       "nodes": int(r["nodes"]) if r["nodes"] else None,
+                       "seconds": float(r["seconds"]), "extrapolated": r["extrapolated"] == "1",
+                       "message": r["message"]}
+            except (KeyError, ValueError):
+                continue
+            rows[_key(row["temperature"], row["speed"])] = row
+    return params, rows
+
+
+def _append(path, row):
+    with open(path, "a", encoding="utf-8", newline="\n") as fh:
+        fh.write(",".join(_csv_value(row[c]) for c in COLUMNS) + "\n")
+        fh.flush()
+        os.fsync(fh.fileno())
+
+
+def _write_atomic(path, text):
+    tmp = f"{path}.{os.getpid()}.part"
+    try:
+        with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def _json_safe(v):
+    if isinstance(v, float) and not math.isfinite(v):
+        return None
+    if isinstance(v, dict):
+        return {k: _json_safe(x) for k, x in v.items()}
+    if isinstance(v, (list, tuple)):
+        return [_json_safe(x) for x in v]
+    return v
+
+
+def plot(table, *, axes=None, title=None):
+    """μ against V (one curve per temperature) and against the reduced speed a_T V.
+
+    Parameters
+    ----------
+    table : FrictionMasterCurve
+    axes : (Axes, Axes), optional
+        Where to draw; a new figure when None.
+
+    Returns
+    -------
+    (ax_speed, ax_reduced)
+    """
+    if axes is None:
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
+        _, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), sharey=True)
+    ax, axr = axes
+    temps = list(dict.fromkeys(table.temperature.tolist()))
+    for i, T in enumerate(temps):
+        sel = (table.temperature == T) & table.success
+        color = f"C{i % 10}"
+        for a, x in ((ax, table.speed), (axr, table.reduced_speed)):
+            a.plot(x[sel], table.mu[sel], "-", color=color, lw=1.2, label=f"T = {T:g}")
+            inside = sel & ~table.extrapolated
+            out = sel & table.extrapolated
+            a.plot(x[inside], table.mu[inside], "o", color=color, ms=3.5)
+            a.plot(x[out], table.mu[out], "o", color=color, ms=4.0, mfc="none")
+    for a, label in ((ax, "V (m/s)"), (axr, "a_T V (m/s), the speed at T_ref")):
+        a.set_xscale("log")
+        a.set_xlabel(label)
+        a.grid(True, which="both", alpha=0.25)
+    ax.set_ylabel("μ = τf/p∞")
+    ax.legend(fontsize=7, title="hollow: modulus extrapolated", title_fontsize=7)
+    if title is None:
+        p = table.parameters
+        m = p["material"]
+        fit = m.get("fit") or {}
+        title = (f"{os.path.basename(m.get('path') or 'material')} ({m['form']}"
+                 + (f", fit max residual {100 * fit['max_residual']:.2g} %" if fit else "")
+                 + f"); p∞ = {p['mean_pressure']:g} Pa, λ = {p['wavelength']:g} m, "
+                 f"h = {p['amplitude']:g} m, ν = {p['nu']:g}; "
+                 + (f"N = {p['nodes']}" if p["nodes"] else f"rtol = {p['rtol']:g}"))
+    ax.figure.suptitle(title, fontsize=8)
+    return ax, axr
+
+
+def write_figure(path_png, table):
+    """`plot` written to ``path_png`` (Agg, 110 dpi)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), sharey=True)
+    plot(table, axes=axes)
+    fig.tight_layout()
+    fig.savefig(path_png, dpi=110)
+    plt.close(fig)
+    return path_png
+
+
+# ------------------------------------------------------------------------------ command line
+def add_parser(sub):
+    """Register ``mastercurve`` on the subparsers ``sub`` of the command line."""
+    from .cli import _Once, _integer, _number, log_range
+    p = sub.add_parser("mastercurve", help="friction master curve μ(V) at several temperatures "
+                                           "(SI; figure, CSV and JSON)",
+                       description="Solve μ at every (temperature, speed) of a material through "
+                                   "the boundary-element road and write points.csv (each point "
+                                   "as it is done), mastercurve.json and mastercurve.png.  SI "
+                                   "units; see docs/materials.md.")
+    p.add_argument("--material", required=True, action=_Once, metavar="FILE",
+                   help="a creep or relaxation series (Pa, s) or a DMA master curve (CSV, its "
+                        "header naming the modulus unit), at the shift's reference temperature")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--wlf", type=_number, nargs=3, action=_Once, metavar=("C1", "C2", "TREF"),
+                   help="WLF shift log10 a_T = -C1 (T - TREF)/(C2 + T - TREF)")
+    g.add_argument("--shift-table", action=_Once, metavar="FILE",
+                   help="shift table CSV (columns temperature, log_aT); T outside it is refused")
+    p.add_argument("--temperatures", type=_number, nargs="+", required=True, action=_Once,
+                   metavar="T", help="temperatures, in the unit of the shift")
+    p.add_argument("--speeds", type=log_range, nargs="+", required=True, action=_Once,
+                   metavar="V", help="sliding speeds V [m/s] (values, or log ranges "
+                                     "START:STOP:COUNT)")
+    p.add_argument("--load", type=_number, required=True, action=_Once, metavar="P",
+                   help="mean pressure p∞ [Pa]")
+    p.add_argument("--wavelength", type=_number, required=True, action=_Once, metavar="L",
+                   help="λ of the rigid sinusoid [m]")
+    p.add_argument("--amplitude", type=_number, required=True, action=_Once, metavar="H",
+                   help="h of the rigid sinusoid [m]")
+    p.add_argument("--nu", type=_number, required=True, action=_Once, metavar="NU",
+                   help="Poisson's ratio")
+    m = p.add_mutually_exclusive_group()
+    m.add_argument("--nodes", type=_integer, action=_Once, metavar="N",
+                   help="a fixed mesh of N panels per period (default: adaptive)")
+    m.add_argument("--rtol", type=_number, action=_Once, metavar="R",
+                   help=f"accuracy of the adaptive mesh (default {DEFAULT_RTOL:g})")
+    p.add_argument("--max-residual", type=_number, action=_Once, metavar="B",
+                   help="DMA: the largest relative residual of the Prony fit (default 0.05)")
+    p.add_argument("--per-decade", type=_number, action=_Once, metavar="K",
+                   help="DMA: relaxation times per decade of the fit (default 2)")
+    p.add_argument("--out", action=_Once, metavar="DIR",
+                   help="output folder (default ./mastercurve); a run's points.csv there is "
+                        "continued when its parameters are the same")
+    return p
+
+
+def main(args) -> int:
+    """Run ``mastercurve``: 0 every point solved, 1 some could not be, 2 bad input."""
+    from . import _materials
+    from .cli import EXIT_FAILED, EXIT_OK, BadInput, _check_output_dir, _stderr
+
+    out = "mastercurve" if args.out is None else args.out
+    _check_output_dir("--out", out, create=False)
+    try:
+        shift, shift_info = _materials.shift_from_options(args.wlf, args.shift_table)
+        plan, parameters = prepare(
+            args.material, shift=shift, shift_info=shift_info, temperatures=args.temperatures,
+            speeds=args.speeds, mean_pressure=args.load, wavelength=args.wavelength,
+            amplitude=args.amplitude, nu=args.nu, nodes=args.nodes,
+            rtol=DEFAULT_RTOL if args.rtol is None else args.rtol,
+            max_residual=args.max_residual, per_decade=args.per_decade)
+    except ValueError as exc:  # InputError too
+        text = str(exc).strip().splitlines()[0]
+        for name, option in (("--speed ", "--speeds "), ("speed=", "--speeds "),
+                             ("--temperature ", "--temperatures "),
+                             ("nodes=", "--nodes "), ("rtol=", "--rtol "),
+                             ("max_nodes=", "--nodes ")):
+            if text.startswith(name):
+                text = option + text[len(name):]
+                break
+        raise BadInput(text) from None
+    _check_output_dir("--out", out, create=True)
+    csv_path = os.path.join(out, "points.csv")
+    line = _parameters_line(parameters)
+    old_params, done = read_points(csv_path)
+    if old_params is not None and old_params != line:
+        raise BadInput(f"--out {out}: its points.csv holds a run with other parameters; choose "
+                       "another folder (or remove that file)")
+    if old_params is None:
+        _write_atomic(csv_path, "".join(f"# {ln}\n" for ln in (
+            "viscosine mastercurve points (python -m comparisons mastercurve)", line, UNITS))
+            + ",".join(COLUMNS) + "\n")
+    t0 = time.monotonic()
+    failed = 0
+
+    def on_point(row, i, total, reused):
+        nonlocal failed
+        if not reused:
+            _append(csv_path, row)
+        failed += not row["success"]
+        what = (f"mu = {row['mu']:.6g}" if row["success"] else f"FAILED: {row['message']}")
+        extra = " (extrapolated)" if row["extrapolated"] else ""
+        how = "from points.csv" if reused else f"{row['seconds']:.2f} s"
+        _stderr(f"mastercurve: {i + 1}/{total} T = {row['temperature']:g}, V = "
+                f"{row['speed']:.4g} m/s: {what}{extra} ({how}; {time.monotonic() - t0:.1f} s)")
+
+    table = solve(plan, parameters, done=done, on_point=on_point)
+    total = len(plan)
+    doc = {"parameters": parameters, "columns": list(COLUMNS), "units": UNITS,
+           "points": list(table.rows)}
+    _write_atomic(os.path.join(out, "mastercurve.json"),
+                  json.dumps(_json_safe(doc), indent=1, allow_nan=False) + "\n")
+    if table.success.any():
+        write_figure(os.path.join(out, "mastercurve.png"), table)
+    _stderr(f"mastercurve: {total - failed}/{total} points in {time.monotonic() - t0:.1f} s; "
+            f"wrote {csv_path}, mastercurve.json" + (", mastercurve.png"
+                                                     if table.success.any() else ""))
+    if failed:
+        _stderr(f"mastercurve: {failed} of {total} points could not be solved")
+    return EXIT_FAILED if failed else EXIT_OK
