@@ -716,12 +716,22 @@ def material_section(doc, save, cfg):
           f"ωτ = E∞/E0 = {RATIO:g}, the inverse relaxation time.")
 
 
+#: what a report without the third code says, in its Tamaas section and at its top
+TAMAAS_MISSING = (
+    "Tamaas is not installed here, so this section has no results: everything else in this "
+    "report stands on its own (both roads, the paper's figures, fields, agreement, convergence). "
+    "Tamaas 2.9 is the extra `peers`. From a clone of the repository (the README's first "
+    "command installs `.` without it) run `pip install '.[peers]'` in the same environment "
+    "(from PyPI: `pip install 'viscosine[peers]'`; the test extra `'.[test]'` includes it), "
+    "then the same report command again with `--resume`: it reuses every stored result and "
+    "adds the nine Tamaas runs (under a minute on two cores with the default meshes, seconds "
+    "with `--quick`).")
+
+
 def tamaas_section(doc, save, store, cfg, timings):
     """Tamaas against both roads below, at and above the friction peak (or how to install it)."""
     if not tamaas_installed():
-        doc.p("Tamaas is not installed here, so this section has no results. Install the third "
-              "code with `pip install 'viscosine[peers]'` (Tamaas 2.9) and run the report "
-              "again; `--resume` reuses every other result.")
+        doc.p(TAMAAS_MISSING)
         return
     import matplotlib.pyplot as plt
     from .peers import tamaas as peer
@@ -809,6 +819,12 @@ def write_report(folder, store, cfg, timings, failures, where=None):
           f"the closure (2.14)–(2.15)). Markers: boundary-element road (`bem/`, eq. 2.5 discretised "
           f"directly, N = {cfg.nodes} panels per period). Units, signs and output keys: "
           f"`docs/conventions.md`. {'Quick run (coarser meshes, fewer points).' if cfg.quick else ''}")
+    doc.p("Contents: the material; the paper's figures 3–12 with both roads; fields; scalars; "
+          "the two roads' agreement on a grid of operating points; the BEM's convergence; "
+          + ("a third code, Tamaas, against both roads; " if tamaas_installed() else
+             "a third code, Tamaas: **not in this report**, it is not installed (see its "
+             "section: `pip install '.[peers]'` from a clone, then `--resume`); ")
+          + "provenance.")
     if failures:
         doc.h(2, "Runs that did not converge")
         doc.p("These operating points are missing from the figures and tables below; they were not reported as results.")
@@ -936,4 +952,8 @@ def main(args):
     write_report(args.out, store, cfg, timings, failures, where)
     print(f"report: wrote {os.path.join(args.out, 'report.md')} and report.html in "
           f"{time.monotonic() - t0:.0f} s", file=sys.stderr)
+    if not tamaas_installed():
+        print("report: without the Tamaas section (the third code is not installed; from a "
+              "clone: pip install '.[peers]', then the same command with --resume)",
+              file=sys.stderr)
     return 1 if failures else 0

@@ -82,6 +82,13 @@ ODD = [
     (["sweep", "--solver", "analytic", "--load", "1:2:x", "--speed", "1"], "COUNT"),
     (["sweep", "--solver", "analytic", "--load", "1:2:1", "--speed", "1"], "COUNT"),
     (["sweep", "--solver", "analytic", "--load", "1:2:10000000", "--speed", "1"], "COUNT"),
+    # a value starting with '-' is a value (argparse would take it for an option)
+    (["sweep", "--solver", "analytic", "--load", "0.3", "--speed", "-1:10:5"],
+     "argument --speed: '-1:10:5': START and STOP of a log range must be finite and > 0"),
+    (["sweep", "--solver", "analytic", "--load", "0.3", "--speed", "1", "-1:10:5"],
+     "'-1:10:5': START and STOP"),
+    (["point", "--solver", "analytic", "--load", "0.3", "--speed", "-1e-3"], "--speed -0.001"),
+    (["point", "--solver", "bem", "--load", "-.5", "--speed", "1"], "--load -0.5"),
     # parallelism
     (SWEEP + ["--workers", "0"], "--workers 0"),
     (SWEEP + ["--workers", "-1"], "--workers -1"),
@@ -193,3 +200,41 @@ def test_a_broken_subcommand_module_does_not_take_the_others_down(monkeypatch, c
     err = capsys.readouterr().err
     assert err.strip() == ("python -m comparisons broken: unavailable (ImportError: no module "
                            "named 'something')")
+
+
+def test_help_of_point_and_sweep_shows_the_accepted_range_of_each_input(capsys):
+    import analytic
+    import bem
+    for name in ("point", "sweep"):
+        assert cli.main([name, "--help"]) == 0
+        text = " ".join(capsys.readouterr().out.split())
+        assert "accepted inputs (analytic.ACCEPTED and bem.ACCEPTED" in text
+        for option, key in (("--load", "load"), ("--penetration", "penetration"),
+                            ("--speed", "speed"), ("--ratio", "ratio"), ("--hk", "hk"),
+                            ("--nodes", "nodes"), ("--rtol", "rtol"), ("--max-nodes", "max_nodes"),
+                            ("--prony", "material")):
+            for road, table in (("analytic", analytic.ACCEPTED), ("bem", bem.ACCEPTED)):
+                if key in table:
+                    allowed = " ".join(cli._allowed(table[key][2]).split())
+                    assert f"{road}: {allowed}" in text, (name, option, road)
+        assert "analytic: a mean pressure p̃∞ = p∞(1 − ν²)/E0 in [1e-40, 1e+40]" in text
+        assert "bem: E∞/E0 > 1 + 1e-12 and ≤ 10000" in text
+
+
+def test_an_unwritable_report_folder_is_refused_like_point_and_sweep(tmp_path, monkeypatch,
+                                                                      capsys):
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    real = os.access
+    monkeypatch.setattr(os, "access", lambda p, mode, **k: False if str(p).startswith(
+        str(locked)) else real(p, mode, **k))
+    for out, where in ((locked / "report", f"the folder {locked} is not writable"),
+                       (locked, "the folder is not writable")):
+        assert cli.main(["report", "--out", str(out)]) == 2
+        err = capsys.readouterr().err.strip()
+        assert err == f"python -m comparisons report: --out {out}: {where}"
+    assert cli.main(["sweep", "--solver", "analytic", "--load", "0.3", "--speed", "1",
+                     "--fields", str(locked)]) == 2
+    assert capsys.readouterr().err.strip().endswith(f"--fields {locked}: the folder is not "
+                                                    "writable")
+    assert not (locked / "report").exists()

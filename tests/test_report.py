@@ -37,6 +37,8 @@ def test_quick_report_writes_every_part(quick_report):
                     "A third code: Tamaas", "Provenance"]:
         assert f"## {section}" in md
     assert "numba" in md and "date (UTC)" in md
+    contents = next(ln for ln in md.splitlines() if ln.startswith("Contents: "))
+    assert ("not in this report" in contents) != report.tamaas_installed()
     assert re.search(r"^\| runs done on \| (this process|\d+ local processes) \|$", md, re.M)
     html = (out / "report.html").read_text()
     assert html.count("data:image/png;base64,") == len(figures) and "src=\"fig" not in html
@@ -72,7 +74,10 @@ def test_without_tamaas_the_section_says_how_to_install_it(monkeypatch):
                    for s, _ in report.runs(cfg))
     doc = report.Doc()
     report.tamaas_section(doc, None, None, cfg, {})
-    assert "pip install 'viscosine[peers]'" in doc.markdown()
+    md = doc.markdown()
+    assert "pip install 'viscosine[peers]'" in md  # from PyPI
+    assert "From a clone of the repository" in md and "pip install '.[peers]'" in md
+    assert "--resume" in md
 
 
 def test_quick_report_html_is_the_markdown_rendered(quick_report):

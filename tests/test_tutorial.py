@@ -4,6 +4,9 @@ with bash, in a temporary folder; the figures it promises appear.
 Every BEM call of the tutorial pins its mesh (``nodes=2048`` / ``--nodes 2048``), so this test
 takes seconds and does not depend on the BEM's default mesh.
 """
+import contextlib
+import io
+import json
 import os
 import re
 import subprocess
@@ -43,10 +46,12 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
     env = {**os.environ, "PATH": f"{bin_dir}{os.pathsep}{os.environ['PATH']}",
            "PYTHONPATH": f"{ROOT}{os.pathsep}{os.environ.get('PYTHONPATH', '')}"}
     namespace = {"__name__": "__tutorial__"}
+    printed = io.StringIO()
     try:
         for i, (lang, code) in enumerate(blocks()):
             if lang == "python":
-                exec(compile(code, f"{TUTORIAL.name}, block {i}", "exec"), namespace)
+                with contextlib.redirect_stdout(printed):
+                    exec(compile(code, f"{TUTORIAL.name}, block {i}", "exec"), namespace)
             else:
                 proc = subprocess.run(["bash", "-e", "-c", code], capture_output=True, text=True,
                                       env=env, cwd=tmp_path)
@@ -58,6 +63,14 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
         assert (tmp_path / name).stat().st_size > 10_000, name
     for name, n in (("sls.jsonl", 21), ("sls_bem.jsonl", 21), ("prony3.jsonl", 19)):
         assert len((tmp_path / name).read_text().splitlines()) == n, name
+    # the numbers the text gives to check against are the ones printed
+    text = TUTORIAL.read_text(encoding="utf-8")
+    promised = re.findall(r"^It prints `([^`]+)`", text, re.M)
+    promised += [ln.strip() for ln in text.splitlines() if ln.startswith("    V/V0 = ")]
+    out = printed.getvalue().splitlines()
+    assert len(promised) == 7 and all(p in out for p in promised), (promised, out)
+    sls = [json.loads(ln) for ln in (tmp_path / "sls.jsonl").read_text().splitlines()]
+    assert f'"mu": {sls[0]["mu"]!r}' in text and sls[0]["speed"] == 0.01
     # what the text says: the BEM's circles sit on the semi-analytic curve
     analytic = namespace["analytic"]
     for s, mu in zip(namespace["bem_speeds"], namespace["mu_sls"]):

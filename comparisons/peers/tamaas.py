@@ -73,7 +73,7 @@ from viscosine._protocol import SCALAR_KEYS, Patch, _plain
 
 #: the Tamaas versions this adapter was verified on (its conventions are measured, not assumed)
 TAMAAS_REQUIREMENT = "tamaas>=2.9,<2.10"
-_INSTALL = "pip install 'viscosine[peers]'"
+_INSTALL = "pip install 'viscosine[peers]' (from a clone of the repository: pip install '.[peers]')"
 
 # Tamaas's model: G∞ = model.mu = 1 (its update is right only then), ν = 0, E = 2(1 + ν) G∞
 _NU = 0.0
@@ -663,10 +663,14 @@ def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=
     return out
 
 
-def _study_rows(dts, **kw):
+def _study_rows(dts, progress=None, results=None, **kw):
+    """One `solve` per time step: the rows of a dt study (``progress(row)`` after each; the
+    results appended to ``results`` when it is a list)."""
     rows = []
     for d in dts:
         r = solve(dt=d, **kw)
+        if results is not None:
+            results.append(r)
         dg = r.diagnostics
         row = {"dt": r.dt, "dt_over_period": dg["dt_over_period"],
                "cells_per_step": dg["cells_per_step"], "steps_per_cell": dg["steps_per_cell"],
@@ -674,6 +678,8 @@ def _study_rows(dts, **kw):
                "wall_time": dg["wall_time"], "success": r.success, "message": r.message}
         row.update({k: getattr(r, k) for k in STUDY_KEYS})
         rows.append(row)
+        if progress is not None:
+            progress(row)
     return rows
 
 
@@ -694,6 +700,123 @@ def extrapolate(rows):
         else:
             err[k] = None
     return {"order": order, "richardson": rich, "error": err}
+
+
+#: the time steps of a dt study in cell crossings T/N (coarse to fine): halved twice, so that the
+#: first-order Richardson value and the size of its next term both come out
+CELLS_PER_STEP = (4, 2, 1)
+
+
+@dataclass(frozen=True)
+class DtExtrapolation:
+    """A dt study on one grid, extrapolated to dt → 0 (`dt_extrapolation`).
+
+    Attributes
+    ----------
+    nodes, cells_per_step
+        The grid and the time steps (cell crossings T/N per step, coarse to fine).
+    rows
+        One per time step, as `dt_study`'s.
+    richardson, error, order
+        Of every quantity of `STUDY_KEYS` (`extrapolate`: first-order Richardson value from the
+        two finest steps, its estimated error with three steps, observed order); with a single
+        step, that step's values and no error.
+    full_contact
+        Of the finest step.
+    success, message
+        Whether every step is an answer, and what the steps say.
+    results
+        The `TamaasResult` of each step.
+    """
+
+    nodes: int
+    cells_per_step: tuple
+    rows: list
+    richardson: dict
+    error: dict
+    order: dict
+    full_contact: bool
+    success: bool
+    message: str
+    results: tuple = field(repr=False, default=())
+
+    def scalars(self):
+        """The extrapolated scalars (STUDY_KEYS, None where undefined) and full_contact."""
+        return {"full_contact": self.full_contact, **self.richardson}
+
+    def fields(self):
+        """σ, v/h and gap/h extrapolated to dt → 0 the same way, point by point (the two finest
+        steps; the finest step's own with one step), on Tamaas's grid."""
+        rs = self.results
+        fine = rs[-1].fields()
+        if len(rs) < 2:
+            return fine
+        coarse = rs[-2].fields()
+        dc, df = rs[-2].dt, rs[-1].dt
+        return Fields(fine.x_over_lambda, *(_richardson(dc, np.asarray(getattr(coarse, k)), df,
+                                                        np.asarray(getattr(fine, k)))
+                                            for k in ("pressure", "displacement", "gap")))
+
+
+def dt_extrapolation(*, load, speed, ratio=3.0, hk=1.0, nodes=512, cells_per_step=CELLS_PER_STEP,
+                     progress=None, **options):
+    """`solve` at dt = c·T/N for each c of ``cells_per_step`` and the values at dt → 0.
+
+    The same study as `dt_study` (and as the report's, through `extrapolate`), given in cell
+    crossings, keeping each step's result so that the fields are extrapolated too.
+
+    Parameters
+    ----------
+    load, speed, ratio, hk, nodes
+        As in `solve`.
+    cells_per_step : sequence of float
+        Time steps in units of T/N (the time the indenter takes to cross a cell), sorted here
+        coarse to fine; default 4, 2, 1.  One value: no extrapolation.
+    progress : callable, optional
+        Called with each step's row (see `dt_study`) as it finishes.
+    **options
+        tolerance, steady_rtol, max_periods (passed to `solve`).
+
+    Returns
+    -------
+    DtExtrapolation
+
+    Raises
+    ------
+    ValueError
+        Bad input (``cells_per_step``: positive numbers, distinct after snapping).
+    """
+    v = validate(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes)
+    try:
+        cells = sorted((float(c) for c in cells_per_step), reverse=True)
+    except (TypeError, ValueError):
+        raise _bad("cells_per_step", cells_per_step, "one or more time steps > 0 in cell "
+                   "crossings T/N") from None
+    if not cells or not all(math.isfinite(c) and c > 0.0 for c in cells):
+        raise _bad("cells_per_step", cells_per_step, "one or more time steps > 0 in cell "
+                   "crossings T/N")
+    t_cell = _TWO_PI / (v["speed"] * v["nodes"])
+    results = []
+    rows = _study_rows([c * t_cell for c in cells], progress=progress, results=results,
+                       load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, **options)
+    used = [r["dt"] for r in rows]
+    if len(set(used)) != len(used):
+        raise _bad("cells_per_step", cells_per_step, "time steps that stay distinct after "
+                   "snapping to the grid (see solve)")
+    if len(rows) >= 2:
+        ext = extrapolate(rows)
+    else:
+        ext = {"richardson": {k: rows[0][k] for k in STUDY_KEYS},
+               "error": dict.fromkeys(STUDY_KEYS), "order": dict.fromkeys(STUDY_KEYS)}
+    ok = all(r.success for r in results)
+    bad = [f"dt = {c:g} T/N: {r.message}" for c, r in zip(cells, results) if not r.success]
+    message = ("; ".join(bad) if bad else
+               f"{len(rows)} time steps ({', '.join(f'{c:g}' for c in cells)} × T/N), "
+               + ("extrapolated to dt → 0" if len(rows) >= 2 else "no extrapolation"))
+    return DtExtrapolation(nodes=int(nodes), cells_per_step=tuple(cells), rows=rows,
+                           richardson=ext["richardson"], error=ext["error"], order=ext["order"],
+                           full_contact=bool(results[-1].full_contact), success=ok,
+                           message=message, results=tuple(results))
 
 
 # ----------------------------------------------------------------------------- the table
