@@ -574,10 +574,13 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     mean_p = float(sigma.sum()) / n if grid.window else float(sigma.mean())
     target = load if load is not None else mean_p
     smax = float(sigma.max()) if sigma.size else 0.0
+    # the solver's, when it measured this grid's scalars (the same numbers, not made twice)
+    tau_f, tau_direct = res.get("friction") or (None, None)
     if grid.window:  # no spectrum of a window: the dissipation and the direct forms in real space
-        tau_f = _window_friction(sigma, grid, material, speed)
+        if tau_f is None:
+            tau_f = _window_friction(sigma, grid, material, speed)
         tau_direct = _window_direct_friction(sigma, grid)
-    else:
+    elif tau_f is None or tau_direct is None:
         tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
     residuals = {
         "complementarity": float(out[0]) / amp,
@@ -623,7 +626,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     else:
         edges = None  # the uniform grid of N panels
         x_out, p_out = grid.x, sigma
-        disp = grid.op.apply(sigma) / amp
+        disp = (gap + grid.y - s) / amp  # C sigma, as the solver's gap holds it
         gap_out = np.where(active, 0.0, gap) / amp
     mu = tau_f / mean_p if mean_p > 0 else math.nan
     status = int(res["status"])

@@ -59,17 +59,19 @@ class CirculantOperator:
         """sigma with C sigma = v - mean(v) and mean(sigma) = 0."""
         return self._through(sfft.rfft(v), True)
 
-    def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False):
+    def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False,
+                 whole: bool = False):
         """``(C z)[idx]`` (or ``(C^+ z)[idx]``) for ``z`` equal to `values` on `idx` and zero
         elsewhere, with at most two full-length work arrays alive at a time (memory at large
-        N: the Krylov solves on an active or free set call nothing else)."""
+        N: the Krylov solves on an active or free set call nothing else).  ``whole``: the
+        product on every panel (the caller gathers)."""
         z = np.zeros(self.n)
         z[idx] = values
         f = sfft.rfft(z)
         del z
         out = self._through(f, inverse)
         del f  # before the gather
-        return out[idx]
+        return out if whole else out[idx]
 
 
 class WindowOperator:
@@ -100,7 +102,7 @@ class WindowOperator:
         self.symbol = sfft.rfft(col)
         self.inverse_symbol = self.symbol if inverse_symbol is None else inverse_symbol
 
-    def _through(self, values: np.ndarray, idx, inverse: bool) -> np.ndarray:
+    def _through(self, values: np.ndarray, idx, inverse: bool, whole=False) -> np.ndarray:
         z = np.zeros(2 * self.n)
         if idx is None:
             z[: self.n] = values
@@ -112,15 +114,17 @@ class WindowOperator:
         else:
             f *= self.symbol
         out = sfft.irfft(f, 2 * self.n)
-        return out[: self.n] if idx is None else out[idx]
+        return out[: self.n] if idx is None or whole else out[idx]
 
     def apply(self, sigma: np.ndarray) -> np.ndarray:
         """k v = T sigma on the window (from the mean line of the period's deformed surface)."""
         return self._through(sigma, None, False)
 
-    def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False):
-        """``(T z)[idx]`` (or the preconditioner's) for ``z`` equal to `values` on `idx`."""
-        return self._through(values, idx, inverse)
+    def apply_on(self, idx: np.ndarray, values: np.ndarray, inverse: bool = False,
+                 whole: bool = False):
+        """``(T z)[idx]`` (or the preconditioner's) for ``z`` equal to `values` on `idx`;
+        ``whole``: on every panel of the window."""
+        return self._through(values, idx, inverse, whole)
 
 
 def gmres(matvec, precond, b, x0, atol, restart, maxiter):

@@ -39,10 +39,10 @@ import os
 
 import numpy as np
 
-from . import _kernels
+from . import _assemble, _kernels
 from ._influence import influence_coefficients_nd
 from ._accepted import MAX_NODES, validate
-from ._assemble import (ROUNDOFF, STATUS_TARGET, _friction, _full_patch, _patches,
+from ._assemble import (ROUNDOFF, STATUS_TARGET, _full_patch, _patches, _runs,
                         _window_friction, build_result, edge_lag_reach, edge_lags)
 from ._inputs import Prony, Sinusoid, _bad
 from ._operator import CirculantOperator, WindowOperator, gmres
@@ -144,8 +144,17 @@ def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
 
 
 def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
-    """Solve on the active set; returns (sigma_full, s, iterations, relres, ok)."""
+    """Solve on the active set; returns (sigma_full, s, iterations, relres, ok, C sigma on
+    every panel).  The last product GMRES makes is with its answer, so that product over all
+    panels is C sigma: kept, it gives the gaps without another transform."""
     op = grid.op
+    held = [None]
+
+    def product(values):
+        held[0] = None  # memory: one whole product alive at a time
+        held[0] = op.apply_on(idx, values, whole=True)
+        return held[0][idx]
+
     n = grid.n
     na = idx.size
     pinv = _restricted_inverse(op, idx)
@@ -159,7 +168,7 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
 
         def matvec(z):
             out = np.empty(na + 1)
-            out[:na] = op.apply_on(idx, z[:na])
+            out[:na] = product(z[:na])
             out[:na] += z[na]
             out[na] = f * z[:na].sum() / per
             return out
@@ -175,9 +184,7 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
 
         b = np.append(grid.y[idx], f * load)
     else:
-        def matvec(z):
-            return op.apply_on(idx, z)
-
+        matvec = product
         precond = pinv
         b = grid.y[idx] - sep
     # tol bounds every entry of the residual: gaps (k v) on A and the load equation
@@ -185,7 +192,7 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
     sigma = np.zeros(n)
     sigma[idx] = z[:na]
     s = z[na] if load is not None else sep
-    return sigma, s, its, relres, ok
+    return sigma, s, its, relres, ok, held[0]
 
 
 def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
@@ -225,7 +232,7 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     sigma += load
     sigma[free] = 0.0
     s = float(u.mean())
-    return sigma, s, its, res / load * grid.amp, ok
+    return sigma, s, its, res / load * grid.amp, ok, None
 
 
 def _dual_floor(grid: _Grid):
@@ -235,8 +242,12 @@ def _dual_floor(grid: _Grid):
 
 
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
-                max_inner):
-    """Primal-dual active-set iteration on one grid."""
+                max_inner, cold=False, widen=True):
+    """Primal-dual active-set iteration on one grid.  ``cold``: the start is far from the
+    answer (no coarser grid gave it): the Krylov solves stop at COLD_KRYLOV_TOL and retreats are
+    sped up (`_speed_up_retreat`) until the active set settles; then every step is solved to
+    tol, and only such steps decide convergence.  ``widen``: a stagnated Krylov solve is tried
+    once more with a wider restart (`_with_retry`)."""
     n = grid.n
     seen = {}
     inner = []
@@ -244,14 +255,16 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     relres = 0.0
     sigma = sigma0  # the caller's start, not used after
     s = s0
-    gap = np.zeros(n)
+    gap = None  # of the current sigma, once solved for
     new = np.empty(n, dtype=np.bool_)
     roundoff = ACTIVE_SET_ROUNDOFF
     # the free-panel step on a large grid, unless its rounding floor is a visible part of the
     # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
     dual = (load is not None and n >= DUAL_MIN_NODES and not grid.window
             and _dual_floor(grid) <= DUAL_MAX_FLOOR * load)
+    loose = cold and COLD_KRYLOV_TOL > tol
     for it in range(1, max_outer + 1):
+        step_tol = COLD_KRYLOV_TOL if loose else tol
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
         if active.all() and load is None and sep != 0.0:
@@ -266,25 +279,36 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             inner.append(0)
             relres = 0.0
             ok = True
+            product = None
         elif dual and 2 * int(np.count_nonzero(active)) > n:
             # most panels in contact on a large grid: solve for the displacements of the few
             # free panels instead (memory and work scale with the free set, not the contact)
             free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
-            x0 = (grid.op.apply(sigma) - grid.y + s)[free] + grid.y[free]
-            sigma, s, its, relres, ok = _with_retry(
-                lambda r: _dual_solve(grid, free, load, x0, tol, r, max_inner), restart,
-                free.size)
+            if gap is None:
+                gap = grid.op.apply(sigma) - grid.y + s
+            x0 = gap[free] + grid.y[free]
+            gap = None  # memory
+            sigma, s, its, relres, ok, product = _with_retry(
+                lambda r: _dual_solve(grid, free, load, x0, step_tol, r, max_inner), restart,
+                free.size, widen)
             inner.append(its)
         else:
             idx = np.flatnonzero(active).astype(np.int32)  # N < 2^31; memory
             x0 = sigma[idx]
             if load is not None:
                 x0 = np.append(x0, s)
-            sigma, s, its, relres, ok = _with_retry(
-                lambda r: _linear_solve(grid, idx, load, sep, x0, tol, r, max_inner), restart,
-                idx.size)
+            gap = None  # memory
+            sigma, s, its, relres, ok, product = _with_retry(
+                lambda r: _linear_solve(grid, idx, load, sep, x0, step_tol, r, max_inner), restart,
+                idx.size, widen)
             inner.append(its)
-        gap = grid.op.apply(sigma) - grid.y + s
+        if product is None:
+            gap = grid.op.apply(sigma) - grid.y + s
+        else:  # C sigma from the Krylov solve's last product: the same numbers
+            gap = product
+            gap -= grid.y
+            gap += s
+            del product
         if not ok:
             status = 2
             message = (f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
@@ -292,6 +316,20 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
                           if grid.window else ")"))
             break
         key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
+        if loose and (key is None or key in seen):
+            # the inexact steps have settled (or cycle): from here every step is solved to tol
+            loose = False
+            seen.clear()
+            if key is None:
+                continue
+        if loose and key is not None and _speed_up_retreat(active, new):
+            key = np.packbits(new).tobytes()
+        if dual and key is not None and (key in seen or it >= DUAL_MAX_STEPS):
+            # the free-panel steps do not settle: their pressures carry the rounding that C^+
+            # amplifies, and near full contact (gaps of 1e-6 h) edge panels whose pressure is
+            # below that flip back and forth; the primal step decides them from here on
+            dual = False
+            seen.clear()
         if key in seen and roundoff < CYCLE_ROUNDOFF:
             # the sets repeat: the panels that flip may all sit within the validity gate's
             # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
@@ -310,8 +348,37 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             break
         seen[key] = it
         active = new.copy()
+    if gap is None:  # stopped before a solve (a window that its contact fills)
+        gap = np.zeros(n)
     return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
             "inner": inner, "relres": relres, "status": status, "message": message}
+
+
+def _speed_up_retreat(active, new):
+    """In a cold start's inexact steps: each end of a run of contact panels that the rule
+    (`new`) retreats by m >= 2 panels retreats by RETREAT_FACTOR m more, keeping at least half
+    of the panels the rule keeps in the run (panels that leave inside a run, and runs that grow,
+    are left alone).  The steps that follow, solved to tol, correct any overshoot.  Returns
+    whether `new` changed."""
+    n = active.size
+    if active.all() or not active.any():
+        return False
+    changed = False
+    for first, length in _runs(active):
+        ids = (first + np.arange(length)) % n
+        keep = np.flatnonzero(new[ids])
+        if keep.size == 0:
+            continue
+        lo, hi = int(keep[0]), int(keep[-1])  # panels lo .. hi of the run stay at its ends
+        more = [int(RETREAT_FACTOR * m) if m >= 2 else 0 for m in (lo, length - 1 - hi)]
+        cap = (hi - lo + 1) // 2
+        if sum(more) > cap:
+            more = [m * cap // sum(more) for m in more]
+        if more[0] or more[1]:
+            new[ids[lo:lo + more[0]]] = False
+            new[ids[hi + 1 - more[1]:hi + 1]] = False
+            changed = True
+    return changed
 
 
 def _next_active_set(active, sigma, gap, new, roundoff, amp):
@@ -323,18 +390,19 @@ def _next_active_set(active, sigma, gap, new, roundoff, amp):
     return None if changed == 0 else np.packbits(new).tobytes()
 
 
-def _with_retry(solve, restart, size):
+def _with_retry(solve, restart, size, widen=True):
     """``solve(restart)``, and once more with _retry_restart's wider restart if it did not
     converge: restarted GMRES can stagnate where the operator is far from normal (a stiff
     material, loss tangent ~ 10, near its memory length).  ``size``: the Krylov vectors'.
     GMRES updates its start in place, so the second try starts from the first one's iterate
     (whose residual is no larger than the start's)."""
-    sigma, s, its, relres, ok = solve(restart)
+    sigma, s, its, relres, ok, product = solve(restart)
     wide = _retry_restart(restart, size)
-    if not ok and wide > restart:
-        sigma, s, more, relres, ok = solve(wide)
+    if not ok and widen and wide > restart:
+        del product  # memory
+        sigma, s, more, relres, ok, product = solve(wide)
         its += more
-    return sigma, s, its, relres, ok
+    return sigma, s, its, relres, ok, product
 
 
 def _retry_restart(restart, size):
@@ -413,6 +481,25 @@ DUAL_MIN_NODES = 2 ** 19
 #: standard linear solid with E_inf/E0 = 3 up to 2^21 panels; stiffer materials, whose floor
 #: reaches 1e-7 of the load and lets pressures of that size sit on free panels, keep the primal
 DUAL_MAX_FLOOR = 2e-8
+#: a cold start's Krylov tolerance (as tol) until its active set settles: the decisions of
+#: those steps need no more (the paper's point at 2^20: 1e-5, 1e-6, 1e-7 take 169, 143, 175
+#: FFT pairs; a tolerance relative to each step's first residual let it grow without bound
+#: where the first steps were far off)
+COLD_KRYLOV_TOL = 1e-6
+#: ... and a patch end that retreats by m >= 2 panels in such a step retreats by this times m
+#: more: from too wide a set, each step removes about 0.4 of the excess (the pressure of the
+#: wider set crosses zero that far inside), so the plain rule needs ~log2(N) steps (18 at 2^20)
+RETREAT_FACTOR = 1.0
+#: nested=False tries the full-contact start with at most these active-set steps and Krylov
+#: iterations per step, and no wider second try (the paper's point takes 9 steps of at most 7
+#: at 2^20; E_inf/E0 = 1000 at V/V0 = 0.01 stagnated at 300 per step for 50 steps) before the
+#: elastic start
+COLD_DIRECT_STEPS = 20
+COLD_DIRECT_INNER = 40
+#: free-panel steps on one grid after which a set that still changes is decided by the primal
+#: step (from a converged coarser grid it settles in 1 or 2; at E_inf/E0 = 3, V/V0 = 0.01,
+#: 4e-5 below the full-contact load, it wandered 13 steps at 2^21 before a set repeated)
+DUAL_MAX_STEPS = 3
 #: restart length of the second try of a Krylov solve that stagnated with `restart` (the
 #: default 8 can stagnate for E_inf/E0 in the hundreds; 40 has not been seen to)
 KRYLOV_RETRY_RESTART = 40
@@ -508,8 +595,9 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     nested : bool
         With ``nodes``: solve the coarser grids first (their contact starts the next grid, and
         the last three give the error estimate).  False solves ``nodes`` alone, from the
-        full-contact pressure clipped at zero, with no estimate.  The adaptive mesh is always
-        nested.
+        full-contact pressure clipped at zero (should that fail, once more from the elastic
+        contact with the first harmonic's compliance |J*|), with no estimate.  The adaptive
+        mesh is always nested.
 
     Returns
     -------
@@ -581,14 +669,26 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     for n in sizes:
         grid = _Grid(profile, material, speed, n)
         steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
-        elastic = (profile, Prony(material.J0))
+        # the elastic start has the compliance |J*| of the first harmonic at this speed: the
+        # relaxed one at low speed, near the glassy one at high speed (from the relaxed contact
+        # a stiff material at high speed shrinks its contact by one panel per active-set step)
+        elastic = (profile, Prony(abs(complex(material.jstar([1.0], speed)[0]))))
         # the coarser grid is handed over in a list that _solve_one empties, so that it is
         # freed once it has given its start (memory at large N)
         start, best, last, res = [best], None, None, None
         if nodes is not None:
             good = None  # a fixed mesh answers on its own grid or not at all
-        res = _solve_one(grid, load, sep, start, tol, steps, restart, max_inner, elastic=elastic)
-        if res["status"] != 0 and levels[:-1] and n <= MAX_NODES_RETRY:
+        # nested=False: first from the full-contact pressure clipped at zero, with few Krylov
+        # steps each (where the operator is far from normal, a stiff material at low speed,
+        # they stagnate from there); then, as any grid that fails, from the elastic contact
+        direct = not nested and START_NODES < n <= MAX_NODES_RETRY
+        if direct:
+            res = _solve_one(grid, load, sep, start, tol, min(steps, COLD_DIRECT_STEPS),
+                             restart, min(max_inner, COLD_DIRECT_INNER), widen=False)
+        else:
+            res = _solve_one(grid, load, sep, start, tol, steps, restart, max_inner,
+                             elastic=elastic)
+        if res["status"] != 0 and (levels[:-1] or direct) and n <= MAX_NODES_RETRY:
             # the coarser contact can be a poor start where the finer grid first resolves a
             # memory length; try once more from the elastic contact on this grid (not on the
             # largest grids, where a failing retry costs minutes)
@@ -729,13 +829,16 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
     return out
 
 
-def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None):
+def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None,
+               widen=True):
     """Solve one grid, started from the finest coarser grid (``start``: a list holding it or
-    None, emptied here), or else from the elastic contact of ``elastic = (profile, relaxed
+    None, emptied here), or else from the elastic contact of ``elastic = (profile, an
     elastic Prony)`` on the same grid, or else from scratch."""
     best = start.pop() if start else None
     n = grid.n
     full = None
+    # no coarser grid of the sequence gives the start: the active set has far to go
+    cold = best is None and n > START_NODES
     if grid.window:  # started from a coarser grid always
         active, sigma0, s0 = _prolong(best[0], best[1], grid)
         return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
@@ -755,9 +858,8 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
                 "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
                 "relres": 0.0, "status": 0, "message": "converged"}
     if best is None and elastic is not None:
-        # no coarser grid: start from the relaxed elastic contact on this grid (a symmetric
-        # positive-definite problem, on which the active-set method converges from anywhere);
-        # the viscoelastic contact lies between it and the glassy one
+        # no coarser grid: start from the elastic contact on this grid (a symmetric
+        # positive-definite problem, on which the active-set method converges from anywhere)
         eg = _Grid(elastic[0], elastic[1], 0.0, n)
         er = _solve_one(eg, load, sep, [None], tol, max(max_outer, 50), restart, max_inner)
         if er["status"] == 0:
@@ -776,7 +878,8 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
         best = None
         if sep is not None:
             s0 = sep
-    return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart, max_inner)
+    return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart, max_inner,
+                       cold, widen)
 
 
 def _level_scalars(res, grid, profile, material, speed, amp):
@@ -786,8 +889,10 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     if grid.window:
         tau_f = _window_friction(sigma, grid, material, speed)
         mean_p = float(sigma.sum()) / grid.nodes
+        res["friction"] = (tau_f, None)  # build_result's, should this grid be the answer
     else:
-        tau_f, _ = _friction(sigma, grid.y, material, speed)
+        res["friction"] = _assemble._friction(sigma, grid.y, material, speed)
+        tau_f = res["friction"][0]
         mean_p = float(sigma.mean())
     out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,
            "mu": tau_f / mean_p if mean_p > 0 else math.nan,

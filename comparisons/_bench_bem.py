@@ -1,4 +1,4 @@
-"""Benchmark tables of the BEM road: accuracy, iterations, time, memory.
+"""Benchmark tables of the BEM road: accuracy, iterations, time, memory, FFT count.
 
 Run as ``python -m comparisons bench-bem`` or
 ``python -c "from comparisons._bench_bem import main; main()"``.  Tables go to
@@ -161,6 +161,72 @@ def table_timing(big_exponent, out) -> None:
           f"all tables so far): {rss:.0f} MiB", file=out)
 
 
+class _FftCount:
+    """Counts the real transforms bem makes (scipy.fft and numpy.fft rfft/irfft, which bem calls
+    through their modules) while active, in pair equivalents of N: a transform of real length L
+    counts L/(2N), so one rfft and one irfft of length N make 1.  Deterministic, unlike times."""
+
+    def __init__(self, n):
+        self.n, self.total, self._saved = n, 0.0, []
+
+    def __enter__(self):
+        import scipy.fft
+        for mod in (scipy.fft, np.fft):
+            for name in ("rfft", "irfft"):
+                orig = getattr(mod, name)
+                self._saved.append((mod, name, orig))
+                setattr(mod, name, self._wrap(orig, name))
+        return self
+
+    def _wrap(self, orig, name):
+        def counted(x, n=None, *args, **kwargs):
+            length = n if n is not None else (
+                np.shape(x)[-1] if name == "rfft" else 2 * (np.shape(x)[-1] - 1))
+            self.total += length / (2.0 * self.n)
+            return orig(x, n, *args, **kwargs)
+        return counted
+
+    def __exit__(self, *exc):
+        for mod, name, orig in reversed(self._saved):
+            setattr(mod, name, orig)
+        return False
+
+
+def table_cost(big_exponent, out) -> None:
+    mat = bem.Prony.standard_linear_solid(3.0)
+    n, speed, load = 2**big_exponent, 1.0, 0.3
+    print(f"\n## Cost of one fixed-N solve at the paper's point (SLS ratio 3, hk 1, speed {speed}, "
+          f"load {load}, N = {n})", file=out)
+    print("FFT pairs: real transforms counted in pair equivalents of N (an rfft and an irfft of "
+          "length N make 1; coefficients, Krylov products, gaps, friction and fields "
+          "included); time: best of 3 after a warm-up solve. nested: the halvings below N "
+          "first (the estimate's grids); cold: nested=False, from the full-contact pressure",
+          file=out)
+    print(f"{'start':>7} {'FFT pairs':>10} {'time [s]':>9} {'nit':>4} {'inner (finest)':>40}",
+          file=out)
+    bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=4096, load=load)
+    rows = {}
+    for name, nested in (("nested", True), ("cold", False)):
+        _progress(f"cost N {n} {name}")
+
+        def run():
+            return bem.solve(profile=bem.Sinusoid(1.0), material=mat, speed=speed, nodes=n,
+                             load=load, nested=nested)
+
+        with _FftCount(n) as count:
+            r = run()
+        best = math.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            run()
+            best = min(best, time.perf_counter() - t0)
+        rows[name] = (count.total, best)
+        print(f"{name:>7} {count.total:10.1f} {best:9.3f} {r.nit:>4} "
+              f"{str(r.inner_iterations):>40}", file=out)
+    print(f"cold/nested: {rows['cold'][0] / rows['nested'][0]:.2f} in FFT pairs, "
+          f"{rows['cold'][1] / rows['nested'][1]:.2f} in time", file=out)
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(prog="bench-bem", description=__doc__.splitlines()[0])
     parser.add_argument("--min-exponent", type=int, default=8, help="smallest N = 2^e (8)")
@@ -170,15 +236,15 @@ def main(argv=None) -> int:
                         help="N = 2^e of the large timing run (20)")
     parser.add_argument("--load", type=float, default=0.3,
                         help="load of the elastic-limit table (0.3: partial contact at both ends)")
-    parser.add_argument("--tables", default="limits,full,iterations,timing",
-                        help="comma-separated subset of limits,full,iterations,timing")
+    parser.add_argument("--tables", default="limits,full,iterations,timing,cost",
+                        help="comma-separated subset of limits,full,iterations,timing,cost")
     args = parser.parse_args(argv)
     if not 3 <= args.min_exponent <= args.max_exponent <= 22 or not 3 <= args.big_exponent <= 22:
         print("bench-bem: exponents must satisfy 3 <= min <= max <= 22 and 3 <= big <= 22",
               file=sys.stderr)
         return 2
     tables = set(args.tables.split(","))
-    unknown = tables - {"limits", "full", "iterations", "timing"}
+    unknown = tables - {"limits", "full", "iterations", "timing", "cost"}
     if unknown:
         print(f"bench-bem: unknown tables {sorted(unknown)}", file=sys.stderr)
         return 2
@@ -193,6 +259,8 @@ def main(argv=None) -> int:
         table_iterations(exps, out)
     if "timing" in tables:
         table_timing(args.big_exponent, out)
+    if "cost" in tables:
+        table_cost(args.big_exponent, out)
     return 0
 
 
