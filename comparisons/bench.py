@@ -126,6 +126,10 @@ def main(args):
     """`python -m comparisons bench`: the defaults of its options are applied here."""
     if getattr(args, "cluster", False):
         return cluster_sweep(2000 if args.points is None else args.points)
+    if getattr(args, "materials", False):
+        from . import _bench_materials
+        return _bench_materials.materials(200 if args.points is None else args.points,
+                                          20261125 if args.seed is None else args.seed)
     if getattr(args, "honesty", False):
         from . import _bench_trust
         seed = 20261123 if getattr(args, "seed", None) is None else args.seed

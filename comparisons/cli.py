@@ -12,7 +12,7 @@
                                 [--workers W | --scheduler ADDRESS] [--fields DIR]
     python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
-    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door]] [--max-log2n K]
+    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door] | --materials [--seed S]] [--max-log2n K]
     python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
     python -m comparisons mastercurve ...           (comparisons/mastercurve.py)
 
@@ -317,8 +317,14 @@ def add_bench_parser(sub):
     g.add_argument("--honesty", action="store_true",
                    help="the BEM's error estimates and adaptive mesh against the semi-analytic "
                         "road on a random sample of the accepted inputs (default 300 points)")
+    g.add_argument("--materials", action="store_true",
+                   help="broad Prony spectra (8-64 terms, 2-20 decades, E∞/E0 up to 1e4) "
+                        "through `point --solver bem --prony`, against the Fourier reference "
+                        "(analytic.fourier_solve), with the standard linear solid's cost "
+                        "(default 200 points)")
     p.add_argument("--seed", type=_integer, action=_Once, metavar="S",
-                   help="seed of the --honesty sample (default 20261123)")
+                   help="seed of the --honesty or --materials sample (default 20261123, "
+                        "20261125)")
     p.add_argument("--light", action="store_true",
                    help="with --honesty: light loads, p~/hk log-uniform in 1e-8 … 1e-4")
     p.add_argument("--front-door", action="store_true",
