@@ -595,8 +595,9 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     nested : bool
         With ``nodes``: solve the coarser grids first (their contact starts the next grid, and
         the last three give the error estimate).  False solves ``nodes`` alone, from the
-        full-contact pressure clipped at zero (should that fail, once more from the elastic
-        contact with the first harmonic's compliance |J*|), with no estimate.  The adaptive
+        full-contact pressure clipped at zero (should that fail, once more from the relaxed
+        elastic contact, then from the elastic contact with the first harmonic's compliance
+        |J*|), with no estimate.  The adaptive
         mesh is always nested.
 
     Returns
@@ -666,13 +667,11 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     failed = 0
     good = None      # (res, grid) of the finest converged grid
     window = None    # what the contact window gave, once tried
+    harmonic = (profile, Prony(abs(complex(material.jstar([1.0], speed)[0]))))
     for n in sizes:
         grid = _Grid(profile, material, speed, n)
         steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
-        # the elastic start has the compliance |J*| of the first harmonic at this speed: the
-        # relaxed one at low speed, near the glassy one at high speed (from the relaxed contact
-        # a stiff material at high speed shrinks its contact by one panel per active-set step)
-        elastic = (profile, Prony(abs(complex(material.jstar([1.0], speed)[0]))))
+        elastic = (profile, Prony(material.J0))
         # the coarser grid is handed over in a list that _solve_one empties, so that it is
         # freed once it has given its start (memory at large N)
         start, best, last, res = [best], None, None, None
@@ -696,6 +695,16 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
                                max_outer if n <= MAX_NODES_FULL_RETRY else steps, restart,
                                max_inner, elastic=elastic)
             if retry["status"] == 0 or good is None:
+                res = retry
+        if res["status"] != 0 and not levels and harmonic != elastic:
+            # the first grid failed from the relaxed contact: try from the elastic contact with
+            # the compliance |J*| of the first harmonic at this speed, near the glassy one at
+            # high speed (from the relaxed contact a stiff material at high speed shrinks its
+            # contact by one panel per active-set step and runs out of steps on every grid).
+            # Only there: on a finer grid the coarser contact is the better start
+            retry = _solve_one(grid, load, sep, [None], tol, max_outer, restart, max_inner,
+                               elastic=harmonic)
+            if retry["status"] == 0:
                 res = retry
         levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
         last = (res, grid)
