@@ -6,8 +6,12 @@
     python -m comparisons suite --certify [--cases NAME ...]          (maintainers)
 
 The suite lives in ``comparisons/data/suite/``: ``suite.json`` (the cases, their inputs and their
-certified values), the profile and Prony files it names (formats of :func:`bem.read_profile` and
-:func:`bem.read_prony`) and one fields file per case (``fields/NAME.csv``).
+certified values), the profile and material files it names and one fields file per case
+(``fields/NAME.csv``).  A case's material is the standard linear solid (``ratio``), a creep series
+(``prony``: the format of :func:`bem.read_prony`) or a material file of any form (``material``: a
+creep series, a relaxation series or a DMA master curve, read by
+:func:`comparisons._materials.read`, with an optional ``temperature`` and ``wlf`` [C1, C2, T_ref]);
+its profile is the sinusoid (``hk``) or a profile file (``profile``, :func:`bem.read_profile`).
 
 How a value is certified (one rule for every case)
 --------------------------------------------------
@@ -31,11 +35,21 @@ little, and are not converging.
   sub-panel edge estimates make single refinements scatter once they reach ~1e-10).
 - BEM only (Prony series, other profiles): the certified value is q_R and ``e = SAFETY · E``
   (SAFETY = 10).
+- BEM and the Fourier reference (a sinusoid case on a Prony material that declares
+  ``"reference": "fourier"``, opt-in per case): the case is also solved by
+  :func:`analytic.fourier_solve` (dense Fourier collocation sharing no code with the BEM; creep
+  series of the case's material, ``require_resolved=False``: its own estimates and refusals
+  decide).  The certified value is q_R and ``e = max(SAFETY · E, |q_R − q_F|)``, q_F the Fourier
+  value: the digits on which both roads agree, never more than the BEM's own study supports.
+  The evidence records q_F and the reference's own error estimate (made absolute).  These
+  broad-spectrum cases are where a BEM-only study is least safe (memory layers far below the
+  panel width are handled by the edge fits, not resolved): an independent road is the check.
 
-A failed BEM solve on any of the finest meshes certifies nothing (0 digits, case status
-"incomplete"); ``--check`` then says when a recomputation would certify more.
+A failed BEM solve on any of the finest meshes, or a failed reference, certifies nothing (0
+digits, case status "incomplete", the solver's message in the notes); ``--check`` then says when
+a recomputation would certify more.
 
-In both cases the number of certified significant digits is the largest d with
+In every case the number of certified significant digits is the largest d with
 ``e < ½ · 10^(floor(log10 |value|) − d + 1)`` — half a unit of the last certified digit bounds e
 — and that half unit at least 1e-10 |value| (RELATIVE_FLOOR, ten times the round-off level: the
 round-off of the BEM's sums differs between machines, and a certified digit must survive
@@ -45,7 +59,8 @@ penetration-controlled case, …) is listed as exact.
 
 Fields (σ, v, gap on the grid x_j = j/M − ½, M = FIELD_POINTS, a subset of the BEM's panel
 centres) carry an absolute error per point: two roads, the semi-analytic value with the largest
-|analytic − BEM| at the point and its two neighbours (finest mesh); BEM only, the finest mesh's
+|analytic − BEM| at the point and its two neighbours (finest mesh); otherwise (BEM only, and the
+Fourier-referenced cases, whose reference is judged on the scalars), the finest mesh's
 value with SAFETY × the largest change between the two finest meshes at the point and its two
 neighbours (the tail sum of a first-order sequence, the pointwise order near a contact edge).
 Every error is at least 1e-11 × the largest magnitude of its column (round-off).
@@ -114,13 +129,20 @@ RULE = (
     "a, with the error e = |a - q_R| (the digits on which the two roads agree; q_R is replaced by "
     "the finest value q_L when the study is in the round-off regime or its differences scatter "
     f"with an observed order below {MIN_ORDER}). BEM only (Prony "
-    f"series, other profiles): the certified value is q_R with e = {SAFETY:g} E. The certified "
+    f"series, other profiles): the certified value is q_R with e = {SAFETY:g} E. BEM and the "
+    "Fourier reference (sinusoid on a Prony material, cases that declare it): the point is also "
+    "solved by the independent Fourier collocation of analytic.fourier_solve (the creep series of "
+    "the case's material), and the certified value is q_R with "
+    f"e = max({SAFETY:g} E, |q_R - q_F|), q_F the Fourier value: the digits on which both roads "
+    "agree, never more than the BEM's own study supports; a failed reference certifies nothing. "
+    "The certified "
     "significant digits are the largest d with e < 1/2 * 10^(floor(log10|value|) - d + 1) (half "
     "a unit of the last certified digit bounds e) and that half unit at least "
     f"{RELATIVE_FLOOR:g} |value| (ten times the round-off level, so that a certified digit "
     "survives recomputation on another machine). Fields on the stated grid carry "
     "an absolute error per point: two roads, the largest |semi-analytic - BEM(finest N)| at the "
-    f"point and its two neighbours; BEM only, {SAFETY:g} x the largest change between the two "
+    "point and its two neighbours; otherwise (the Fourier-referenced cases too: their reference "
+    f"is judged on the scalars), {SAFETY:g} x the largest change between the two "
     f"finest meshes at the point and its neighbours; never below {FIELD_FLOOR:g} x the largest "
     "magnitude of the column. A failed solve on any of the finest meshes certifies nothing.")
 
@@ -262,11 +284,48 @@ def get_case(name, suite=None) -> dict:
 
 def two_roads(point) -> bool:
     """True when the semi-analytic road applies (sinusoid on the standard linear solid)."""
-    return not point.get("profile") and not point.get("prony")
+    return not point.get("profile") and not point.get("prony") and not point.get("material")
+
+
+#: the independent references a case may declare (``"reference"``), beyond the two roads
+REFERENCES = ("fourier",)
+
+
+def reference_of(case):
+    """The independent reference a case declares (None or one of REFERENCES); SuiteError for
+    one it may not have."""
+    ref = case.get("reference")
+    if ref is None:
+        return None
+    if ref not in REFERENCES:
+        raise SuiteError(f"case {case['name']}: reference {ref!r} is not allowed: "
+                         f"one of {', '.join(REFERENCES)} or none")
+    p = case["point"]
+    if p.get("profile") or two_roads(p):
+        # the Fourier collocation solves the sinusoid only, and the standard linear solid has
+        # the semi-analytic road already
+        raise SuiteError(f"case {case['name']}: reference {ref!r} is not allowed here: a "
+                         "sinusoid on a Prony material (prony or material), not "
+                         + ("a profile file" if p.get("profile") else "the standard linear solid"))
+    return ref
 
 
 def data_path(rel) -> Path:
     return DATA / rel
+
+
+def case_material(point, base=DATA):
+    """The :class:`comparisons._materials.Material` of a point that names a ``material`` file
+    (any form: creep, relaxation, DMA; at ``temperature`` with ``wlf`` when given); SuiteError
+    naming the file for a bad one."""
+    from . import _materials
+    wlf = point.get("wlf")
+    try:
+        return _materials.read(str(Path(base) / point["material"]),
+                               temperature=point.get("temperature"),
+                               wlf=tuple(float(v) for v in wlf) if wlf is not None else None)
+    except ValueError as exc:
+        raise SuiteError(f"material {point['material']}: {str(exc).splitlines()[0]}") from None
 
 
 def _problem(point, base=DATA):
@@ -274,6 +333,8 @@ def _problem(point, base=DATA):
     import bem
     if point.get("prony"):
         material = bem.read_prony(Path(base) / point["prony"])
+    elif point.get("material"):
+        material = case_material(point, base).prony
     else:
         material = bem.Prony.standard_linear_solid(point.get("ratio", 3.0))
     if point.get("profile"):
@@ -297,6 +358,40 @@ def analytic_solution(point):
     import analytic
     return analytic.solve(**_control(point), speed=float(point["speed"]),
                           ratio=float(point.get("ratio", 3.0)), hk=float(point.get("hk", 1.0)))
+
+
+def fourier_solution(point, material):
+    """The Fourier reference at an operating point on the sinusoid (load or penetration control)
+    for the creep series ``material`` (a :class:`bem.Prony`, the BEM's own input, so that both
+    roads solve the same material).
+
+    ``require_resolved=False``: broad spectra have memory layers far below any grid, which the
+    reference's estimates and refusals judge, not a blanket refusal.
+    """
+    import analytic
+    return analytic.fourier_solve(**_control(point), speed=float(point["speed"]),
+                                  creep=(float(material.J0), tuple(float(j) for j in material.J),
+                                         tuple(float(t) for t in material.tau)),
+                                  hk=float(point.get("hk", 1.0)), require_resolved=False)
+
+
+#: the Fourier reference's estimates are relative for these (absolute for ka, ke, ke_hat)
+_FOURIER_RELATIVE = ("load", "penetration", "tau_f", "mu", "contact_fraction")
+
+
+def _fourier_evidence(ref, key):
+    """(value, absolute error estimate) of scalar ``key`` from a Fourier result (NaN when it
+    does not give one)."""
+    v = _value(ref, key)
+    est = ref.error_estimate or {}
+    if key == "separation":  # s/h = 1 − Δ/h: the absolute error of Δ/h
+        e = est.get("penetration")
+        e = float("nan") if e is None else float(e) * abs(_value(ref, "penetration"))
+    else:
+        e = est.get(key)
+        e = float("nan") if e is None else float(e) * (abs(v) if key in _FOURIER_RELATIVE
+                                                         else 1.0)
+    return v, e
 
 
 #: Krylov tolerance of the suite's BEM solves (relative to h k): below the discretisation error
@@ -428,6 +523,47 @@ def profile_file_text(heights, comment) -> str:
     return "\n".join(lines) + "\n"
 
 
+#: the generated broad spectra of the suite's Fourier-referenced cases (materials/*.txt): decades
+#: are (log10 of the shortest, of the longest) time, ratio is E∞/E0 = J0/J(0+) = E(0+)/E_r
+BROAD24 = {"terms": 24, "decades": (-6.0, 6.0), "ratio": 1000.0}
+LOGNORMAL32 = {"terms": 32, "decades": (-5.0, 5.0), "ratio": 100.0, "width": 2.0}
+RELAX16 = {"terms": 16, "decades": (-4.0, 4.0), "ratio": 300.0}
+
+
+def creep_spectrum(terms, decades, ratio, width=None):
+    """A creep series (J0 = 1, J_i, τ_i) of E∞/E0 = ``ratio`` (deterministic).
+
+    ``terms`` retardation times ``τ_i = 10**linspace(decades[0], decades[1], terms)``; amplitudes
+    equal (a box spectrum, ``width`` None) or log-normal in τ (weights
+    ``exp(−½ ((log10 τ_i − centre)/width)²)``, centre the middle decade), scaled so that
+    ``Σ J_i = 1 − 1/ratio`` (J(0+) = 1/ratio).
+    """
+    lo, hi = decades
+    tau = 10.0 ** np.linspace(lo, hi, terms)
+    if width is None:
+        wgt = np.ones(terms)
+    else:
+        wgt = np.exp(-0.5 * ((np.log10(tau) - 0.5 * (lo + hi)) / width) ** 2)
+    amps = wgt / wgt.sum() * (1.0 - 1.0 / ratio)
+    return 1.0, tuple(float(a) for a in amps), tuple(float(t) for t in tau)
+
+
+def relaxation_spectrum(terms, decades, ratio):
+    """A relaxation series (E_r = 1, E_i, θ_i) of E∞/E0 = ``ratio``: ``terms`` equal moduli
+    ``E_i = (ratio − 1)/terms`` at relaxation times ``θ_i = 10**linspace(*decades, terms)``."""
+    theta = 10.0 ** np.linspace(decades[0], decades[1], terms)
+    return 1.0, tuple((ratio - 1.0) / terms for _ in theta), tuple(float(t) for t in theta)
+
+
+def series_file_text(first, base, amplitudes, times, comment) -> str:
+    """A series file: ``#`` comment lines, ``<first> <base>`` (``J0`` for a creep series, the
+    format of :func:`bem.read_prony`; ``E_r`` for a relaxation series,
+    :func:`viscosine.materials.read_relaxation`), then one ``amplitude time`` line per term."""
+    lines = [f"# {line}" for line in comment.splitlines()] + [f"{first} {float(base)!r}"]
+    lines += [f"{float(a)!r} {float(t)!r}" for a, t in zip(amplitudes, times)]
+    return "\n".join(lines) + "\n"
+
+
 # --------------------------------------------------------------------------- patches
 def patch_records(res, shape):
     """The contact patches of a BEM result as dicts keyed by PATCH_KEYS.
@@ -497,11 +633,27 @@ def _value(obj, key):
     return float("nan") if v is None else float(v)
 
 
-def _certify(value_ref, seq_nodes, seq_values, roads):
+FOURIER_METHOD = "bem convergence + fourier reference"
+
+
+def _certify(value_ref, seq_nodes, seq_values, roads, fourier=None):
+    """One scalar's record.  ``roads``: the semi-analytic value ``value_ref`` is certified; else
+    the BEM's q_R, checked against ``fourier`` ((value, absolute estimate) of the Fourier
+    reference; (NaN, NaN) when it failed) when given."""
     st = study(seq_nodes, seq_values)
     ev = {"nodes": [int(n) for n in seq_nodes], "values": [_num(v) for v in seq_values],
           "order": _num(st["order"]), "richardson": _num(st["richardson"]),
           "estimate": _num(st["estimate"]), "regime": st["regime"]}
+    if fourier is not None:
+        value = st["richardson"]
+        gap = abs(value - fourier[0])
+        # the digits both roads agree on, never more than the BEM's own study supports; no
+        # reference value (a failed reference) leaves no agreement to certify
+        err = max(SAFETY * st["estimate"], gap) if math.isfinite(gap) else math.inf
+        nd = digits(value, err)
+        return {"value": _num(value), "digits": nd, "rounded": rounded(value, nd),
+                "error": _num(err), "method": FOURIER_METHOD, "bem": ev,
+                "fourier": {"value": _num(fourier[0]), "estimate": _num(fourier[1])}}
     if roads:
         # the BEM's best value: extrapolated when its study is asymptotic, else the finest mesh
         # (no study at all, e.g. a failed mesh, certifies nothing)
@@ -551,6 +703,7 @@ def compute(case, base=DATA, progress=None):
     point = case["point"]
     nodes = [int(n) for n in case["nodes"]]
     roads = two_roads(point)
+    reference = reference_of(case)
     problem = _problem(point, base)
     shape = ProfileShape(point, base)
     M = int(case.get("field_points", FIELD_POINTS))
@@ -581,6 +734,10 @@ def compute(case, base=DATA, progress=None):
         ref_ok = False
     else:
         ref_ok = ref is not None
+    four = fourier_solution(point, problem[1]) if reference == "fourier" else None
+    four_ok = four is not None and bool(four.success)
+    if four is not None and not four_ok:
+        failures.append(f"Fourier reference: {four.message.splitlines()[0][:200]}")
     fin = next((r for r in reversed(runs) if r is not None), None)
     full = bool(ref.full_contact) if ref_ok else bool(fin.full_contact) if fin else False
     fulls = {bool(r.full_contact) for r in runs if r is not None}
@@ -599,7 +756,10 @@ def compute(case, base=DATA, progress=None):
             # single patch on another profile: measured from its summit
             seq = [p[0][k] if p and len(p) == 1 else float("nan") for p in patches]
         a = _value(ref, k) if ref_ok else float("nan")
-        scalars[k] = _certify(a, nodes, seq, roads and ref_ok)
+        fv = None
+        if four is not None:
+            fv = _fourier_evidence(four, k) if four_ok else (float("nan"), float("nan"))
+        scalars[k] = _certify(a, nodes, seq, roads and ref_ok, fv)
         if roads and not ref_ok:
             scalars[k]["method"] = "two roads (semi-analytic failed)"
 
@@ -626,12 +786,22 @@ def compute(case, base=DATA, progress=None):
     if failures:
         status = "incomplete"
         notes.append("solver failures: " + "; ".join(failures))
-    if len(fulls) > 1 or (ref_ok and fin is not None and bool(fin.full_contact) != full):
+    if len(fulls) > 1 or (ref_ok and fin is not None and bool(fin.full_contact) != full) \
+            or (four_ok and bool(four.full_contact) != full):
         status = "incomplete"
         notes.append("the roads or meshes disagree on full contact")
-    certified = {"method": "two roads" if roads else "bem convergence", "status": status,
+    method = "two roads" if roads else FOURIER_METHOD if four is not None else "bem convergence"
+    certified = {"method": method, "status": status,
                  "notes": notes, "scalars": scalars, "exact": exact, "patches": patch_out,
                  "fields": field_summary}
+    if four is not None:
+        # what the reference was and what it said (its caveats included), not its timing:
+        # the record must not change when nothing certified does
+        certified["reference"] = {"solver": "analytic.fourier_solve", "success": four_ok,
+                                  "message": four.message.splitlines()[0][:300],
+                                  "warnings": [w[:300] for w in four.warnings],
+                                  "nodes": [int(n) for n in four.nodes],
+                                  "shifts": int(four.shifts), "require_resolved": False}
     return certified, fields
 
 
@@ -807,9 +977,18 @@ def _case_key(case) -> str:
     h = hashlib.sha256()
     h.update(json.dumps({k: case[k] for k in ("name", "point", "nodes")}, sort_keys=True).encode())
     h.update(str(case.get("field_points", FIELD_POINTS)).encode())
-    for k in ("profile", "prony"):
+    if case.get("reference"):  # only when declared: the keys of the other cases stay as they were
+        h.update(f"reference={case['reference']}".encode())
+    for k in ("profile", "prony", "material"):
         if case["point"].get(k):
             h.update((DATA / case["point"][k]).read_bytes())
+    if case["point"].get("material"):
+        # the conversion and the DMA fit are the material's reading, outside both roads' source
+        from viscosine import materials as vm
+
+        from . import _materials
+        for mod in (vm, _materials):
+            h.update(Path(mod.__file__).read_bytes())
     h.update(viscosine.__version__.encode())
     h.update(_source_hash().encode())
     return h.hexdigest()[:20]
@@ -938,9 +1117,51 @@ def certify(names=(), log=None, suite_file=None):
 
 
 # --------------------------------------------------------------------------- export
+#: what the export calls each form of a material file
+FORM_NAMES = {"creep": "creep series", "relaxation": "relaxation series (generalised Maxwell)",
+              "dma": "DMA master curve"}
+#: the files an exported case folder writes itself (a copied material file never takes one)
+EXPORT_FILES = ("inputs.json", "prony.txt", "profile.csv", "scalars.json", "scalars.csv",
+                "fields.csv", "material.png")
+
+
+def _source_name(point) -> str:
+    """The name under which an export copies a case's original material file."""
+    name = Path(point["material"]).name
+    return name if name not in EXPORT_FILES else "source-" + name
+
+
 def _prony_text(point) -> str:
     if point.get("prony"):
         return (DATA / point["prony"]).read_text(encoding="utf-8")
+    if point.get("material"):
+        m = case_material(point)
+        info, pr = m.info, m.prony
+        name = Path(point["material"]).name
+        copied = "copied alongside" + ("" if _source_name(point) == name
+                                       else f" as {_source_name(point)}")
+        lines = [f"# creep series converted from {name} ({copied}): a "
+                 f"{FORM_NAMES[info['form']]}, sha256 {info['sha256']}",
+                 "# converted by comparisons._materials.read (relaxation series: exactly; DMA "
+                 "curve: its Prony fit, then exactly)"]
+        if info.get("fit"):
+            f = info["fit"]
+            lines.append(f"# DMA fit: {f['per_decade']:g} relaxation times per decade, largest "
+                         f"relative residual {f['max_residual']:.3g} (bound {f['bound']:g}), "
+                         f"measured window {f['window'][0]:.4g}..{f['window'][1]:.4g} rad/s"
+                         + (" (shifted to the temperature below)"
+                            if info.get("temperature") is not None else ""))
+        if info.get("temperature") is not None:
+            sh = info["shift"]
+            lines.append(f"# at temperature {info['temperature']:g} (WLF C1 = {sh['C1']:g}, "
+                         f"C2 = {sh['C2']:g}, T_ref = {sh['T_ref']:g}: log10 a_T = "
+                         f"{info['log10_aT']:.6g}; every time multiplied by a_T)")
+        lines.append(f"# J(t) = J0 - sum_i J_i exp(-t/tau_i), {len(pr.J)} terms; compliances in "
+                     f"1/E_ref, E_ref = {info['E_ref_is']} = {info['E_ref']!r}; retardation "
+                     f"(creep) times in tau_ref, tau_ref = {info['tau_ref_is']}")
+        lines.append(f"J0 {float(pr.J0)!r}")
+        lines += [f"{float(j)!r} {float(t)!r}" for j, t in zip(pr.J, pr.tau)]
+        return "\n".join(lines) + "\n"
     r = float(point.get("ratio", 3.0))
     return ("# standard linear solid, E_inf/E0 = %r: J(t) = J0 - J1 exp(-t/tau)\n"
             "# compliances in 1/E0, times in the creep time tau\n"
@@ -971,16 +1192,37 @@ def _inputs(case, suite) -> dict:
                         "description": about}
     else:
         d["profile"] = {"kind": "sinusoid", "hk": float(p.get("hk", 1.0)), "file": "profile.csv"}
+    units = ("load = p (1 - nu^2)/E_ref; speed = V tau_ref k; lengths in wavelengths "
+             "(x/lambda, crest at 0, sliding toward +x), heights k*y; compliances in "
+             "1/E_ref, times in tau_ref")
     if p.get("prony"):
         d["material"] = {"kind": "prony", "file": "prony.txt", "figure": "material.png"}
+    elif p.get("material"):
+        info = case_material(p).info
+        d["material"] = {"kind": FORM_NAMES[info["form"]],
+                         "file": "prony.txt",
+                         "file_is": "the creep series the BEM solves, converted from source_file",
+                         "source_file": _source_name(p), "source_sha256": info["sha256"],
+                         "E_ref": info["E_ref"], "E_ref_is": info["E_ref_is"],
+                         "tau_ref_is": info["tau_ref_is"],
+                         "terms": info["terms"], "temperature": info["temperature"],
+                         "shift": info["shift"], "log10_aT": info["log10_aT"],
+                         "fit": info["fit"], "figure": "material.png"}
+        units += f" (E_ref = {info['E_ref_is']}; tau_ref = {info['tau_ref_is']})"
     else:
         d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
                          "file": "prony.txt"}
-    d["units"] = ("load = p (1 - nu^2)/E_ref; speed = V tau_ref k; lengths in wavelengths "
-                  "(x/lambda, crest at 0, sliding toward +x), heights k*y; compliances in "
-                  "1/E_ref, times in tau_ref (E_ref = E0, tau_ref = tau: the creep time)")
-    d["reference_road"] = ("semi-analytic (two roads agree)" if two_roads(p)
-                           else "BEM (convergence study)")
+    if not p.get("material"):
+        units += " (E_ref = E0, tau_ref = tau: the creep time)"
+    d["units"] = units
+    if two_roads(p):
+        d["reference_road"] = "semi-analytic (two roads agree)"
+    elif reference_of(case) == "fourier":
+        d["reference_road"] = ("BEM (convergence study), checked against the independent "
+                               "Fourier-collocation reference analytic.fourier_solve (the digits "
+                               "both agree on)")
+    else:
+        d["reference_road"] = "BEM (convergence study)"
     return d
 
 
@@ -1012,7 +1254,9 @@ def export(folder, names=(), suite=None):
         _atomic_write(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
                                                     ensure_ascii=False) + "\n")
         _atomic_write(d / "prony.txt", _prony_text(case["point"]))
-        if case["point"].get("prony"):
+        if case["point"].get("material"):  # the file as the user would hold it
+            shutil.copyfile(DATA / case["point"]["material"], d / _source_name(case["point"]))
+        if case["point"].get("prony") or case["point"].get("material"):
             _material_png(d / "material.png", case)
         _atomic_write(d / "profile.csv", _profile_text(case["point"]))
         sc = {"case": case["name"], "status": cert["status"], "notes": cert["notes"],
@@ -1045,13 +1289,24 @@ def _material_png(path, case):
     """E′, E″ and tan δ of a case's Prony material, its sliding frequency V/V0 marked."""
     from . import _figures
     point = case["point"]
-    j0, terms = _figures.prony_numbers(DATA / point["prony"])
+    if point.get("prony"):
+        j0, terms = _figures.prony_numbers(DATA / point["prony"])
+        source = Path(point["prony"]).name
+    else:  # the creep series converted from the material file, as the BEM solves it
+        pr = case_material(point).prony
+        j0, terms = float(pr.J0), [(float(j), float(t)) for j, t in zip(pr.J, pr.tau)]
+        source = Path(point["material"]).name + (f" at T = {point['temperature']:g}"
+                                                  if point.get("temperature") is not None else "")
     speed = float(point["speed"])
+    if len(terms) <= 4:
+        series = "(J_i, τ_i) = " + ", ".join(f"({j:g}, {t:g})" for j, t in terms)
+    else:  # a broad spectrum: its extent, not every term, fits in a title
+        taus = [t for _, t in terms]
+        series = f"{len(terms)} terms, τ_i = {min(taus):.3g} … {max(taus):.3g}"
     tmp = path.with_name(path.stem + ".part.png")
     _figures.material_figure(tmp, j0, terms, speeds=[speed],
                              speeds_label=f"sliding frequency kV: ωτ_ref = V/V0 = {speed:g}",
-                             title=f"{case['name']} ({Path(point['prony']).name}): J0 = {j0:g}, "
-                                   "(J_i, τ_i) = " + ", ".join(f"({j:g}, {t:g})" for j, t in terms)
+                             title=f"{case['name']} ({source}): J0 = {j0:g}, {series}"
                                    + f"; E∞/E0 = {j0 / (j0 - sum(j for j, _ in terms)):.4g}")
     os.replace(tmp, path)
 
@@ -1085,7 +1340,10 @@ def _index_readme(suite, cases) -> str:
            "the profile is the trigonometric interpolant of the samples);",
            "- `prony.txt`: the creep function, a line `J0 value` then one line `J_i tau_i` per "
            "term, J(t) = J0 − Σ J_i exp(−t/τ_i), compliances in 1/E_ref, retardation (creep) "
-           "times in τ_ref;",
+           "times in τ_ref; a case whose material is a relaxation series or a DMA master curve "
+           "(`inputs.json` says which, at which temperature) gets the creep series it was "
+           "converted to, its header naming the original file (copied alongside) and its "
+           "SHA-256;",
            "- `scalars.json` and `scalars.csv`: every certified value with its certified "
            "significant digits, the value rounded to them, and the error bound behind them;",
            "- `fields.csv`: pressure, displacement and gap on a stated grid, each with its "
@@ -1116,13 +1374,16 @@ def _index_readme(suite, cases) -> str:
 
 def _materials_list(cases):
     """README lines linking the material figure of each Prony case (none without one)."""
-    prony = [c for c in cases if c["point"].get("prony")]
+    prony = [c for c in cases if c["point"].get("prony") or c["point"].get("material")]
     if not prony:
         return []
     return (["Prony materials (creep functions, creep times; `docs/conventions.md` of "
              "viscosine, 'Creep times, not relaxation times'):", ""]
             + [f"- {c['name']}: [{c['name']}/material.png]({c['name']}/material.png) "
-               f"({Path(c['point']['prony']).name}, V/V0 = {c['point']['speed']:g})"
+               f"({Path(c['point'].get('prony') or c['point']['material']).name}"
+               + (f" at T = {c['point']['temperature']:g}"
+                  if c["point"].get("temperature") is not None else "")
+               + f", V/V0 = {c['point']['speed']:g})"
                for c in prony] + [""])
 
 

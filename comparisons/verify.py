@@ -25,7 +25,9 @@ Inputs
 - A callable (``--callable module:function`` or ``path/to/file.py:function``): called as
   ``function(point, nodes)`` for each ``--nodes`` with ``point`` the operating point (a dict:
   ``load`` or ``penetration``, ``speed``, and ``ratio``/``hk`` or absolute ``prony``/``profile``
-  file paths); it returns a :class:`viscosine.Fields` (its cells too, on a non-uniform grid), a
+  file paths, or for a suite case that names a material file of any form an absolute
+  ``material`` path with its ``temperature`` and ``wlf`` when given, as
+  :func:`comparisons._materials.read` takes them); it returns a :class:`viscosine.Fields` (its cells too, on a non-uniform grid), a
   dict of arrays keyed like the CSV columns, or an object with ``.fields`` (and optionally
   ``.scalars``, a dict).
   :func:`viscosine_bem` is such a callable (viscosine's own BEM).
@@ -370,7 +372,7 @@ def point_from_case(name):
                    + (f" (closest: {', '.join(near)})" if near else
                       f", e.g. {', '.join(names[:3])}")) from None
     point = dict(case["point"])
-    for k in ("profile", "prony"):
+    for k in ("profile", "prony", "material"):
         if point.get(k):
             point[k] = str(_suite.data_path(point[k]))
     return point, case
