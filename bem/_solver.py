@@ -36,8 +36,11 @@ from __future__ import annotations
 import math
 import numbers
 import os
+import warnings
 
 import numpy as np
+
+from viscosine import ViscosineWarning
 
 from . import _assemble, _kernels
 from ._influence import influence_coefficients_nd
@@ -737,7 +740,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
                                       error_estimate=window["estimate"], rtol=rtol,
                                       extra_diagnostics={"window": window["summary"]})
                 if answer.success:
-                    return answer
+                    return _announced(answer)
                 window["summary"]["outcome"] = answer.message
             # the window gave no answer: the periodic grids go on as without it
             window["res"] = window["grid"] = None  # memory
@@ -758,10 +761,18 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     extra = {"estimate_note": shown_note} if shown_note else {}
     if window is not None:
         extra["window"] = window["summary"]
-    return build_result(res, grid, profile, material, speed, amp, load, levels,
-                        asked=asked, control=control,
-                        error_estimate=estimate, rtol=rtol if nodes is None else None,
-                        extra_diagnostics=extra or None)
+    return _announced(build_result(res, grid, profile, material, speed, amp, load, levels,
+                                   asked=asked, control=control, error_estimate=estimate,
+                                   rtol=rtol if nodes is None else None,
+                                   extra_diagnostics=extra or None))
+
+
+def _announced(result):
+    """The result, its warnings raised as `viscosine.ViscosineWarning` (a Python caller sees
+    what the command line prints; they stay in ``result.warnings``)."""
+    for text in result.warnings:
+        warnings.warn(text, ViscosineWarning, stacklevel=3)
+    return result
 
 
 def _window_wanted(load, profile, values):

@@ -40,7 +40,7 @@ from typing import NamedTuple
 import numpy as np
 
 import viscosine
-from viscosine import Fields
+from viscosine import Fields, ViscosineWarning
 from viscosine._protocol import SCALAR_KEYS
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
@@ -709,7 +709,9 @@ def run(spec, fields=False, deep=None):
             _warnings.simplefilter("always")
             solved = ROADS[spec["solver"]](spec, fields, deep)
         rec = solved.record
-        extra = [f"{w.category.__name__}: {w.message}" for w in caught]
+        # the roads' own warnings are in the record already
+        extra = [f"{w.category.__name__}: {w.message}" for w in caught
+                 if not issubclass(w.category, ViscosineWarning)]
         rec["material"], rec["time_unit"] = describe_material(spec)
         if spec.get("si") is not None:
             rec["si_scales"] = spec["si"]

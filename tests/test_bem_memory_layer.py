@@ -178,3 +178,18 @@ def test_memory_far_below_a_panel_against_the_semi_analytic_road():
         base = abs(w.ka - analytic.solve(load=0.3, speed=0.0, ratio=1000.0).ka)
         assert abs(r.ka - ref.ka) < base + LAG_LEFT * shift
         assert abs(r.ke - ref.ke) < LAG_LEFT * shift
+
+
+def test_a_python_caller_sees_the_result_s_warnings():
+    """The warnings the command line prints reach a caller of bem.solve as ViscosineWarning
+    (and stay in result.warnings); a result without any raises none."""
+    import warnings
+
+    from viscosine import ViscosineWarning
+    with pytest.warns(ViscosineWarning, match="memory layer") as caught:
+        r = bem.solve(load=0.3, speed=1e-3, ratio=1000.0, nodes=1024)
+    assert r.warnings and [str(w.message) for w in caught] == list(r.warnings)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        r = bem.solve(load=0.3, speed=1.0, nodes=1024)
+    assert not r.warnings

@@ -23,6 +23,12 @@ import importlib
 from ._fields import Fields
 from ._si import SIResult
 
+
+class ViscosineWarning(UserWarning):
+    """What a result says about its own accuracy that the caller should see (also kept in the
+    result's ``warnings`` and in every JSON record): for example a memory layer under a panel,
+    whose edges then carry an error of the order of the layer."""
+
 __version__ = "0.2.0"
 
 _LAZY = {"analytic", "bem", "comparisons"}
@@ -34,4 +40,4 @@ def __getattr__(name):  # the roads are imported only when asked for
     raise AttributeError(f"module 'viscosine' has no attribute {name!r}")
 
 
-__all__ = ["Fields", "SIResult", "__version__", "analytic", "bem", "comparisons"]
+__all__ = ["Fields", "SIResult", "ViscosineWarning", "__version__", "analytic", "bem", "comparisons"]
