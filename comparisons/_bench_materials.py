@@ -27,6 +27,8 @@ import time
 
 import numpy as np
 
+from ._bench_trust import QUANTITIES, _errors
+
 #: the sample's ranges (log-uniform unless said)
 TERMS = (8, 64)            # uniform integers
 DECADES = (2.0, 20.0)      # uniform
@@ -37,8 +39,6 @@ SHAPES = ("log-normal", "box", "power-law", "two-peaks")
 #: a quantity is judged only where the reference's own estimate is at most this fraction of the
 #: BEM's (else the reference cannot tell the BEM's error from its own)
 REFERENCE_MARGIN = 1.0 / 3.0
-#: quantities judged: (key, relative?)
-QUANTITIES = (("mu", True), ("penetration", True), ("ka", False), ("ke", False))
 
 
 def _progress(msg):
@@ -86,7 +86,7 @@ def sample(points, seed):
     return out
 
 
-def _record(spec_kw, folder):
+def _record(spec_kw):
     """One point through the front door: (record or None, error, seconds)."""
     import json
 
@@ -100,19 +100,18 @@ def _record(spec_kw, folder):
     return json.loads(json.dumps(res["record"], allow_nan=False)), None, sec
 
 
-def one_point(point, folder=None):
+def one_point(point):
     """The point's BEM record, the standard linear solid's cost and the reference (a dict)."""
     from analytic import fourier_solve
-    folder = folder or tempfile.mkdtemp(prefix="viscosine-materials-")
-    path = os.path.join(folder, f"creep-{os.getpid()}-{id(point)}.txt")
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write(f"J0 {point['J0']!r}\n")
-        for j, t in zip(point["J"], point["tau"]):
-            fh.write(f"{j!r} {t!r}\n")
-    rec, err, sec = _record({"load": point["load"], "speed": point["speed"], "prony": path},
-                            folder)
+    with tempfile.TemporaryDirectory(prefix="viscosine-materials-") as folder:
+        path = os.path.join(folder, "creep.txt")
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(f"J0 {point['J0']!r}\n")
+            for j, t in zip(point["J"], point["tau"]):
+                fh.write(f"{j!r} {t!r}\n")
+        rec, err, sec = _record({"load": point["load"], "speed": point["speed"], "prony": path})
     _, sls_err, sls_sec = _record({"load": point["load"], "speed": point["speed"],
-                                   "ratio": point["ratio"]}, folder)
+                                   "ratio": point["ratio"]})
     t0 = time.perf_counter()
     ref = fourier_solve(load=point["load"], speed=point["speed"],
                         creep=(point["J0"], point["J"], point["tau"]), require_resolved=False)
@@ -121,15 +120,9 @@ def one_point(point, folder=None):
            "reference": bool(ref.success), "reference_seconds": time.perf_counter() - t0,
            "reference_message": ref.message.splitlines()[0][:120]}
     if rec is not None and ref.success:
-        rs, est = ref.scalars(), ref.error_estimate or {}
-        errs, refest = {}, {}
-        for key, rel in QUANTITIES:
-            a, b = rec.get(key), rs.get(key)
-            if a is None or b is None:
-                continue
-            errs[key] = abs(a - b) / abs(b) if rel and b != 0 else abs(a - b)
-            refest[key] = est.get(key)
-        row.update(true=errs, reference_estimate=refest)
+        est = ref.error_estimate or {}
+        row.update(true=_errors(rec, ref.scalars()),
+                   reference_estimate={key: est.get(key) for key, _ in QUANTITIES})
     return row
 
 

@@ -62,11 +62,12 @@ def sample(points, seed, light=False):
     return [{k: float(cols[k][i]) for k in BOX} for i in range(points)]
 
 
-def _errors(r, ref):
-    """True errors of the BEM result r against the semi-analytic ref (None where undefined)."""
+def _errors(values, ref):
+    """True errors of the BEM's scalars against the reference's (two mappings: a result's
+    ``scalars()`` or a JSON record; None where either is undefined)."""
     out = {}
     for key, rel in QUANTITIES:
-        a, b = getattr(r, key), getattr(ref, key)
+        a, b = values.get(key), ref.get(key)
         if a is None or b is None:
             out[key] = None
         elif rel:
@@ -93,7 +94,7 @@ def one_point(point, nodes=4096, rtol=None):
         est = dict(r.error_estimate) if r.error_estimate is not None else None
         row[mode] = {"success": bool(r.success), "message": r.message.splitlines()[0][:200],
                      "seconds": time.perf_counter() - t0, "nodes": int(r.nodes),
-                     "errors": _errors(r, ref), "estimate": est}
+                     "errors": _errors(r.scalars(), ref.scalars()), "estimate": est}
     return row
 
 
@@ -210,20 +211,6 @@ def _summary(rows, rtol, out):
     return 0 if good else 1
 
 
-def _record_errors(rec, ref):
-    """True errors of a JSON record against the semi-analytic ref (None where undefined)."""
-    out = {}
-    for key, rel in QUANTITIES:
-        a, b = rec.get(key), getattr(ref, key)
-        if a is None or b is None:
-            out[key] = None
-        elif rel:
-            out[key] = abs(a - b) / abs(b) if b != 0 else (0.0 if a == b else math.inf)
-        else:
-            out[key] = abs(a - b)
-    return out
-
-
 def front_door_point(point, rtol=None):
     """One point the way ``python -m comparisons point --solver bem --fields F`` runs it (the
     spec the command line builds, `runner.run` with its last line of defence), judged on the
@@ -244,7 +231,7 @@ def front_door_point(point, rtol=None):
         rec = json.loads(json.dumps(res["record"], allow_nan=False))  # what is printed
         f = res["fields"]
         old = abs(float(np.mean(f.pressure)) / rec["load"] - 1.0)  # the gate before the cells
-        front.update(nodes=rec["nodes"], errors=_record_errors(rec, ref),
+        front.update(nodes=rec["nodes"], errors=_errors(rec, ref.scalars()),
                      estimate=rec.get("error_estimate"), uniform=bool(f.uniform),
                      old_mean_error=old, old_gate_refuses=old > runner.CONTROL_MISMATCH)
     row["front"] = front
