@@ -679,8 +679,9 @@ def _cmd_bench(args):
         raise BadInput(f"--max-log2n {args.max_log2n} is not allowed: an integer in [3, 24]")
     if args.cluster and args.max_log2n is not None:
         raise BadInput("--max-log2n is not allowed with --cluster: it sets the BEM tables")
-    if args.seed is not None and not args.honesty:
-        raise BadInput("--seed is not allowed without --honesty: it seeds that sample")
+    if args.seed is not None and not (args.honesty or args.materials):
+        raise BadInput("--seed is not allowed without --honesty or --materials: it seeds "
+                       "their sample")
     if args.light and not args.honesty:
         raise BadInput("--light is not allowed without --honesty: it chooses that sample")
     if args.front_door and not args.honesty:
