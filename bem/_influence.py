@@ -19,12 +19,13 @@ with ``y = V z`` and the memory length ``L_i = V tau_i / lambda = w tau_i/(2 pi)
 
 It is evaluated by the exact recursion ``E_m = S_m + exp(-h/L) E_(m+1)``
 (h = 1/N, periodic in m) with ``S_m = int_0^h exp(-y/L) c(X_m + y) dy``: O(N) per
-term after the N source integrals.  The source integrals use Gauss rules for
-the weight ``exp(-a t)`` on [0, 1] (a = h/L), so any speed, from ``L << h`` to
-``L >> lambda``, is integrated with the same number of nodes (16 near the panel, 9 up to
-32 panels away, 4 beyond, where c is smooth on the scale of a panel); the two intervals
-that contain a kink of ``c`` (a ``y log y`` singularity of its derivative at a
-panel edge) get a graded composite rule.
+term after the N source integrals.  The two intervals that contain a kink of ``c`` (a
+``y log y`` singularity of its derivative at a panel edge) get a graded composite rule.  On
+every other interval every term of a Prony series shares the nodes
+(:class:`MemorySources`): product rules on fixed Gauss-Legendre points, ``int_0^1 exp(-a t)
+l_q(t) dt`` (a = h/L) for their Lagrange basis ``l_q``, exact for any speed, from ``L << h``
+to ``L >> lambda``.  c is evaluated once per grid, not once per term: a rubber's 30-term
+spectrum costs a few matrix-vector products more than one term.
 
 Fourier check (mode ``n``, ``n != 0``): the symbol of the operator is
 ``(2/|n|) J*(n) sinc(pi n/N)`` (times 1/N per panel) with
@@ -37,76 +38,21 @@ import math
 from functools import lru_cache
 
 import numpy as np
-from scipy.linalg import eigh_tridiagonal
 
 from . import _kernels
 
-#: Gauss points for the source intervals near the panel-edge kinks / farther / in the tail.
-_N_NEAR = 16
-_N_FAR = 9
-_N_TAIL = 4
-#: intervals within this many panels of a kink use the near rule, within _FAR_BAND the far
-#: rule.  Beyond, c(X_m + t h) ~ 4 h log|2 sin(pi X)| has t-derivatives of order
-#: 4 h (k - 1)!/m^k, and the n-point Gauss rule errs by about 4 h (4 m)^(-2n)/(2n):
-#: 7e-18 h for n = 4 at m = 32, below the rounding of the sums
-_NEAR_BAND = 3
-_FAR_BAND = 32
+#: the shared product rules of the source intervals but the two with a kink: (farthest
+#: distance from a kink in panels, Legendre points).  On an interval m panels from a kink,
+#: c(X_m + t h) is analytic in a Bernstein ellipse of parameter 2m + (4m^2 - 1)^(1/2), about
+#: 4m, and interpolation at n Legendre points errs by about that to the power -n, of c: at
+#: each band's nearest interval 3.7^-32 = 5e-19, 12^-16 = 6e-18, 132^-8 = 1e-17,
+#: 1028^-6 = 8e-19, 32772^-4 = 9e-19
+_SHARED_BANDS = ((2, 32), (32, 16), (256, 8), (8192, 6), (None, 4))
 #: the sawtooth ratio sigma_i/sigma_(i+1) the collocation shift of a memory term allows
 #: (see collocation_shift): a sawtooth left by the discretisation decays by this much per panel
 SAWTOOTH_RATIO = 0.3
 #: above this a = h/L the weight e^(-a t) is treated as e^(-a t) on [0, inf)
 _A_LAGUERRE = 120.0
-
-
-@lru_cache(maxsize=256)
-def exp_weight_rule(a: float, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss rule for ``int_0^1 exp(-a t) f(t) dt`` (exact for degree 2n-1).
-
-    For ``a >= 120`` the truncation at t = 1 is below 1e-50 relative and the
-    scaled Gauss-Laguerre rule is used.  Otherwise the measure is discretised by a
-    composite Gauss-Legendre rule fine enough to be exact to rounding for
-    polynomials of degree 2n-1 times the exponential, and the Jacobi matrix is
-    obtained by the Stieltjes (Lanczos) procedure with full reorthogonalisation.
-
-    Parameters
-    ----------
-    a : float
-        Decay rate, ``a >= 0``.
-    n : int
-        Number of nodes.
-
-    Returns
-    -------
-    t, w : ndarray
-        Nodes in (0, 1) and positive weights.
-    """
-    if a >= _A_LAGUERRE:
-        s, w = np.polynomial.laguerre.laggauss(n)
-        return s / a, w / a
-    pieces = max(4, int(np.ceil(a / 2.0)))
-    g, gw = np.polynomial.legendre.leggauss(n + 12)
-    edges = np.linspace(0.0, 1.0, pieces + 1)
-    half = 0.5 * np.diff(edges)
-    mid = 0.5 * (edges[1:] + edges[:-1])
-    t = (mid[:, None] + half[:, None] * g[None, :]).ravel()
-    w = (half[:, None] * gw[None, :]).ravel() * np.exp(-a * t)
-    # Lanczos on diag(t) in the w-inner product, full reorthogonalisation
-    q = np.zeros((n + 1, t.size))
-    alpha = np.zeros(n)
-    beta = np.zeros(n)
-    q[0] = 1.0 / np.sqrt(w.sum())
-    for j in range(n):
-        v = t * q[j]
-        alpha[j] = np.dot(w * q[j], v)
-        for _ in range(2):
-            v -= q[: j + 1].T @ (q[: j + 1] @ (w * v))
-        nv = np.sqrt(np.dot(w * v, v))
-        if j + 1 < n:
-            beta[j + 1] = nv
-            q[j + 1] = v / nv
-    nodes, vec = eigh_tridiagonal(alpha, beta[1:])
-    weights = w.sum() * vec[0] ** 2
-    return nodes, weights
 
 
 def _kink_integral(m: int, nodes: int, a: float) -> float:
@@ -115,7 +61,7 @@ def _kink_integral(m: int, nodes: int, a: float) -> float:
     Composite Gauss-Legendre (16 points) on subintervals graded geometrically
     (ratio 1/4) toward the kink, refined to width 2/a where the weight varies.
     """
-    g, gw = np.polynomial.legendre.leggauss(16)
+    g, gw = _leggauss(16)
     total = 0.0
     for lo, hi, kink_at_hi in ((0.0, 0.5, True), (0.5, 1.0, False)):
         length = hi - lo
@@ -153,7 +99,123 @@ def elastic_coefficients(nodes: int) -> np.ndarray:
     return out
 
 
-def memory_coefficients(nodes: int, length: float) -> np.ndarray:
+@lru_cache(maxsize=None)
+def _leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.polynomial.legendre.leggauss(n)
+
+
+@lru_cache(maxsize=None)
+def _laggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
+    return np.polynomial.laguerre.laggauss(n)
+
+
+@lru_cache(maxsize=None)
+def _legendre01(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and barycentric weights on [0, 1]."""
+    g, _ = _leggauss(n)
+    t = 0.5 * (g + 1.0)
+    bary = np.array([1.0 / np.prod(t[q] - np.delete(t, q)) for q in range(n)])
+    return t, bary
+
+
+def _lagrange_basis(x: np.ndarray, n: int) -> np.ndarray:
+    """``l_q(x_r)`` for the Lagrange basis of the n Legendre points of [0, 1], shape (x.size, n)
+    (barycentric form; a point of x on a Legendre point takes the exact row)."""
+    t, bary = _legendre01(n)
+    diff = x[:, None] - t[None, :]
+    hit = diff == 0.0
+    diff[hit] = 1.0
+    basis = bary / diff
+    basis /= basis.sum(axis=1, keepdims=True)
+    rows = np.flatnonzero(hit.any(axis=1))
+    basis[rows] = hit[rows]
+    return basis
+
+
+@lru_cache(maxsize=None)
+def _composite_basis(pieces: int, n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A composite Gauss-Legendre rule on [0, 1] (`pieces` equal pieces of n + 12 points),
+    its weights and the Lagrange basis of the n Legendre points on its nodes."""
+    g, gw = _leggauss(n + 12)
+    edges = np.linspace(0.0, 1.0, pieces + 1)
+    half = 0.5 * np.diff(edges)
+    mid = 0.5 * (edges[1:] + edges[:-1])
+    x = (mid[:, None] + half[:, None] * g[None, :]).ravel()
+    w = (half[:, None] * gw[None, :]).ravel()
+    return x, w, _lagrange_basis(x, n)
+
+
+@lru_cache(maxsize=4096)
+def _product_weights(a: float, n: int) -> np.ndarray:
+    """``w_q = int_0^1 exp(-a t) l_q(t) dt`` for the Lagrange basis ``l_q`` of the n Legendre
+    points of [0, 1] (a product rule: exact for degree n - 1 with the weight, any a >= 0).
+
+    For ``a >= 120`` the truncation at t = 1 is below 1e-50 relative and the scaled
+    n-point Gauss-Laguerre rule (exact to degree 2n - 1 on [0, inf)) integrates each ``l_q``.
+    Below, a composite Gauss-Legendre rule whose pieces (4 … 64, a power of two) keep the
+    exponential's change on each below e^2 does, exactly to rounding: its n + 12 points per
+    piece integrate a polynomial of degree n - 1 times the exponential's Taylor series to
+    beyond degree 2n + 20.
+    """
+    if a >= _A_LAGUERRE:
+        s, w = _laggauss(n)
+        return (w / a) @ _lagrange_basis(s / a, n)
+    pieces = 4
+    while pieces < a / 2.0:
+        pieces *= 2
+    x, w, basis = _composite_basis(pieces, n)
+    return (w * np.exp(-a * x)) @ basis
+
+
+class MemorySources:
+    """The source integrals ``S_m = int_0^1 exp(-a t) c(X_m + t h) dt`` of the memory
+    recursion, for the signed offsets `offsets` of a grid of `nodes` panels, for any decay
+    ``a = h/L``: every Prony term of a grid calls the same instance.
+
+    c is the elastic panel value (:func:`_kernels.panel_values`).  Its values at the shared
+    Legendre points (:data:`_SHARED_BANDS`, more points nearer the kinks of c at ``X =
+    +-h/2``) are made once, here; a term then costs one matrix-vector product per band.  The
+    two intervals that contain a kink (offsets 0 and -1) take a graded composite rule.
+    """
+
+    def __init__(self, nodes: int, offsets: np.ndarray):
+        self.nodes = nodes
+        offsets = np.asarray(offsets, dtype=np.int64)
+        self.size = offsets.size
+        dist = np.where(offsets >= 0, offsets, -offsets - 1)
+        self.kinks = [(int(i), int(offsets[i])) for i in np.flatnonzero(dist == 0)]
+        self.bands = []
+        lo = 1
+        for hi, points in _SHARED_BANDS:
+            sel = np.flatnonzero((dist >= lo) & (dist <= (hi if hi is not None else dist.max())))
+            if sel.size:
+                t, _ = _legendre01(points)
+                x = (offsets[sel, None] + t[None, :]) / nodes
+                vals = np.empty(x.size)
+                _kernels.panel_values(x.ravel(), nodes, vals)
+                if sel[-1] - sel[0] + 1 == sel.size:
+                    sel = slice(int(sel[0]), int(sel[-1]) + 1)  # contiguous: no gather
+                self.bands.append((sel, points, vals.reshape(-1, points)))
+            if hi is None:
+                break
+            lo = hi + 1
+
+    def __call__(self, a: float) -> np.ndarray:
+        src = np.empty(self.size)
+        for sel, points, vals in self.bands:
+            src[sel] = vals @ _product_weights(a, points)
+        for i, m in self.kinks:
+            src[i] = _kink_integral(m, self.nodes, a)
+        return src
+
+
+def _signed_offsets(nodes: int) -> np.ndarray:
+    m = np.arange(nodes)
+    return np.where(m <= nodes // 2, m, m - nodes)
+
+
+def memory_coefficients(nodes: int, length: float,
+                        sources: MemorySources | None = None) -> np.ndarray:
     """Memory coefficients of one Prony term per unit ``J_i`` (second term of eq. 2.5).
 
     Parameters
@@ -162,6 +224,8 @@ def memory_coefficients(nodes: int, length: float) -> np.ndarray:
         Number of panels N.
     length : float
         Memory length ``L = V tau_i / lambda > 0`` in wavelengths.
+    sources : MemorySources, optional
+        The grid's shared source integrals (made here when not given).
 
     Returns
     -------
@@ -169,22 +233,33 @@ def memory_coefficients(nodes: int, length: float) -> np.ndarray:
         ``(1/L) int_0^inf exp(-y/L) c(X_m + y) dy`` for m = 0..nodes-1.
     """
     a = (1.0 / nodes) / length
-    t_near, w_near = exp_weight_rule(a, _N_NEAR)
-    t_far, w_far = exp_weight_rule(a, _N_FAR)
-    t_tail, w_tail = exp_weight_rule(a, _N_TAIL)
-    src = np.empty(nodes)
-    _kernels.memory_sources(nodes, t_near, w_near, t_far, w_far, _NEAR_BAND - 1,
-                            t_tail, w_tail, _FAR_BAND, src)
-    src[0] = _kink_integral(0, nodes, a)
-    src[nodes - 1] = _kink_integral(-1, nodes, a)
+    if sources is None:
+        sources = MemorySources(nodes, _signed_offsets(nodes))
+    src = sources(a)
     out = np.empty(nodes)
     _kernels.exponential_recursion(src, a, out)
     out *= a  # (1/L) * h * (1/h) E: the recursion ran on S_m / h
     return out
 
 
-def window_memory_coefficients(nodes: int, length: float, first: int,
-                               count: int) -> np.ndarray:
+def _window_reach(nodes: int, first: int, count: int) -> int:
+    """``D = max(|first|, |last|) + 1`` of a window, refused unless well inside one period."""
+    last = first + count - 1
+    d = max(abs(first), abs(last)) + 1
+    if 2 * d + 4 > nodes:
+        raise ValueError(f"count={count!r} is not allowed: a window well inside one period "
+                         f"(offsets {first}..{last} on nodes={nodes})")
+    return d
+
+
+def window_sources(nodes: int, first: int, count: int) -> MemorySources:
+    """The shared source integrals of a window (signed offsets ``-(D+1) .. D``)."""
+    d = _window_reach(nodes, first, count)
+    return MemorySources(nodes, np.arange(-(d + 1), d + 1))
+
+
+def window_memory_coefficients(nodes: int, length: float, first: int, count: int,
+                               sources: MemorySources | None = None) -> np.ndarray:
     """:func:`memory_coefficients` at the signed offsets ``first .. first + count - 1`` only,
     for a grid too fine to be made (a contact window of ``count`` panels of a grid of
     ``nodes`` panels per period; panel values are finite up to 2^52).
@@ -196,23 +271,15 @@ def window_memory_coefficients(nodes: int, length: float, first: int,
     ``q^(N + m - D - 1)``) and the smooth rest, ``(1/h) int_(X0)^(1-X0) exp(-(X - X0)/L) c(X)
     dX`` with ``X0 = (D+1) h``, by Gauss-Legendre on intervals graded geometrically toward
     both ends (c ~ 4 h log|2 sin pi X| there) and no wider than 4 L where the weight decays.
+    ``sources``: :func:`window_sources` of the window, when already made.
     """
-    last = first + count - 1
-    d = max(abs(first), abs(last)) + 1
-    if 2 * d + 4 > nodes:
-        raise ValueError(f"count={count!r} is not allowed: a window well inside one period "
-                         f"(offsets {first}..{last} on nodes={nodes})")
+    d = _window_reach(nodes, first, count)
     h = 1.0 / nodes
     a = h / length
-    rules = []
-    for npts in (_N_NEAR, _N_FAR, _N_TAIL):
-        rules += list(exp_weight_rule(a, npts))
+    if sources is None:
+        sources = window_sources(nodes, first, count)
     lo = -(d + 1)
-    src = np.empty(2 * d + 2)  # signed offsets lo .. d
-    _kernels.memory_sources_span(nodes, lo, rules[0], rules[1], rules[2], rules[3],
-                                 _NEAR_BAND - 1, rules[4], rules[5], _FAR_BAND, src)
-    src[-lo] = _kink_integral(0, nodes, a)
-    src[-lo - 1] = _kink_integral(-1, nodes, a)
+    src = sources(a)  # signed offsets lo .. d
     offs = np.arange(lo, d + 1, dtype=float)
     image = float(np.dot(np.exp(-a * (nodes + offs - d - 1)), src))
     x0 = (d + 1) * h
@@ -241,7 +308,7 @@ def _smooth_memory_integral(x0: float, x1: float, length: float, nodes: int) -> 
         pieces = max(1, int(math.ceil((p - edges[-1]) / (4.0 * length))))
         edges.extend(edges[-1] + (p - edges[-1]) * np.arange(1, pieces + 1) / pieces)
     edges = np.asarray(edges)
-    g, gw = np.polynomial.legendre.leggauss(20)
+    g, gw = _leggauss(20)
     half = 0.5 * np.diff(edges)
     centre = 0.5 * (edges[1:] + edges[:-1])
     x = (centre[:, None] + half[:, None] * g[None, :]).ravel()
@@ -301,16 +368,15 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float,
     if base is None:
         base = (memory_coefficients(nodes, length) if span is None
                 else window_memory_coefficients(nodes, length, *span))
-    if span is None:
-        m = np.arange(nodes)
-        offsets = np.where(m <= nodes // 2, m, m - nodes)
-    else:
-        offsets = np.arange(span[0], span[0] + span[1])
     if delta <= 0.0:
         return base
+    if span is None:
+        offsets = _signed_offsets(nodes)
+    else:
+        offsets = np.arange(span[0], span[0] + span[1])
     a = delta / length
     x0 = offsets / nodes - delta
-    g, gw = np.polynomial.legendre.leggauss(16)
+    g, gw = _leggauss(16)
     t = 0.5 * (g + 1.0)
     w = 0.5 * gw * np.exp(-a * t)
     acc = np.zeros(base.size)
@@ -363,19 +429,22 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
     # what each term adds at once over half a panel (all of J_i where its memory is short)
     local = [j_i * -math.expm1(-0.5 * h / ln) if ln > 0.0 else j_i
              for (j_i, _), ln in zip(terms, lengths)]
+    sources = None  # made at the first memory term, shared by the others
     for i, ((j_i, _), length) in enumerate(zip(terms, lengths)):
         if j_i == 0.0:
             continue
         if length == 0.0:
             total = total + j_i * base  # fully relaxed: J(0+) + J_i acts at once
-        else:
-            j_local = j_plus + sum(local) - local[i]
-            delta = collocation_shift(h, length, j_local, j_i)
-            unshifted = None
-            if parts is not None:
-                unshifted = parts[length] = (
-                    memory_coefficients(nodes, length) if span is None
-                    else window_memory_coefficients(nodes, length, *span))
-            total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span,
-                                                              unshifted)
+            continue
+        if sources is None:
+            sources = (MemorySources(nodes, _signed_offsets(nodes)) if span is None
+                       else window_sources(nodes, *span))
+        j_local = j_plus + sum(local) - local[i]
+        delta = collocation_shift(h, length, j_local, j_i)
+        unshifted = (memory_coefficients(nodes, length, sources) if span is None
+                     else window_memory_coefficients(nodes, length, *span, sources))
+        if parts is not None:
+            parts[length] = unshifted
+        total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span,
+                                                          unshifted)
     return total

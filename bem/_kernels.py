@@ -171,83 +171,20 @@ def panel_values(x: np.ndarray, nodes: int, out: np.ndarray) -> None:
 
 
 @njit(cache=True)
-def _memory_source(mm: int, nodes: int, t_near: np.ndarray, w_near: np.ndarray,
-                   t_far: np.ndarray, w_far: np.ndarray, near: int,
-                   t_tail: np.ndarray, w_tail: np.ndarray, far: int) -> float:
-    """S_m of :func:`memory_sources` for the signed offset ``mm`` (not 0 or -1)."""
-    delta = np.pi / nodes
-    h = 1.0 / nodes
-    dist = mm if mm >= 0 else -mm - 1
-    if dist <= near:
-        tt = t_near
-        ww = w_near
-    elif dist <= far:
-        tt = t_far
-        ww = w_far
-    else:
-        tt = t_tail
-        ww = w_tail
-    acc = 0.0
-    base = mm * h
-    for q in range(tt.shape[0]):
-        acc += ww[q] * cl2_difference(_TWO_PI * (base + tt[q] * h), delta)
-    return (2.0 / np.pi) * acc
-
-
-@njit(cache=True)
-def memory_sources(nodes: int, t_near: np.ndarray, w_near: np.ndarray,
-                   t_far: np.ndarray, w_far: np.ndarray, near: int,
-                   t_tail: np.ndarray, w_tail: np.ndarray, far: int,
-                   out: np.ndarray) -> None:
-    """Source integrals S_m = int_0^1 e^(-a t) c(X_m + t h) dt of the memory recursion.
-
-    c is the elastic panel value (:func:`panel_values`), X_m = m h, h = 1/nodes.
-    The weight e^(-a t) is built into the Gauss rules (t, w) passed in; the rule
-    "near" (most points) serves |m + 1/2| <= near + 1/2, where the panel-edge
-    singularities of c (at X = +-h/2) lie within a panel of the interval, the rule "far"
-    the intervals up to `far` panels away and the rule "tail" (fewest points) the rest,
-    where c is smooth on the scale of the interval.  The two
-    intervals that contain such a singularity (m = 0 and m = -1 = nodes - 1) are
-    left untouched here: the caller integrates them with a graded rule.
-    """
-    for m in range(nodes):
-        if m == 0 or m == nodes - 1:
-            continue
-        mm = m if m <= nodes // 2 else m - nodes  # signed offset, for the band test
-        out[m] = _memory_source(mm, nodes, t_near, w_near, t_far, w_far, near,
-                                t_tail, w_tail, far)
-
-
-@njit(cache=True)
-def memory_sources_span(nodes: int, first: int, t_near: np.ndarray, w_near: np.ndarray,
-                        t_far: np.ndarray, w_far: np.ndarray, near: int,
-                        t_tail: np.ndarray, w_tail: np.ndarray, far: int,
-                        out: np.ndarray) -> None:
-    """out[i] = S_m of :func:`memory_sources` for the signed offsets m = first + i, on a grid
-    of `nodes` panels that need not be made (a contact window of a very fine grid); the
-    offsets 0 and -1 (the kinks) are left untouched."""
-    for i in range(out.shape[0]):
-        mm = first + i
-        if mm == 0 or mm == -1:
-            continue
-        out[i] = _memory_source(mm, nodes, t_near, w_near, t_far, w_far, near,
-                                t_tail, w_tail, far)
-
-
-@njit(cache=True)
 def exponential_recursion(source: np.ndarray, a: float, out: np.ndarray) -> None:
     """Periodic solution of E_m = S_m + exp(-a) E_(m+1), E_(m+N) = E_m.
 
     This is the exact exponential smoothing E_m = sum_(q>=0) e^(-a q) S_(m+q)
-    (periodic in q), computed in O(N): E_0 by the direct (geometrically
-    weighted) sum divided by 1 - e^(-a N) (with expm1), then backwards.
+    (periodic in q), computed in O(N): E_0 by the geometrically weighted sum over one
+    period (Horner's rule, the same recursion started from 0) divided by 1 - e^(-a N) (with
+    expm1), then backwards.
     """
     n = source.shape[0]
-    acc = 0.0
-    for q in range(n):
-        acc += np.exp(-a * q) * source[q]
-    e0 = acc / (-np.expm1(-a * n))
     r = np.exp(-a)
+    acc = 0.0
+    for q in range(n - 1, -1, -1):
+        acc = source[q] + r * acc
+    e0 = acc / (-np.expm1(-a * n))
     out[0] = e0
     nxt = e0
     for m in range(n - 1, 0, -1):

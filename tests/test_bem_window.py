@@ -21,21 +21,6 @@ from bem._operator import WindowOperator
 TOL_COEFF = 5e-13
 
 
-def test_memory_sources_span_is_memory_sources_on_its_offsets():
-    nodes, length = 160, 0.002
-    a = (1.0 / nodes) / length
-    rules = []
-    for n in (16, 9, 4):
-        rules += list(_influence.exp_weight_rule(a, n))
-    full = np.zeros(nodes)
-    _kernels.memory_sources(nodes, *rules[:4], 2, *rules[4:], 32, full)
-    span = np.zeros(nodes - 1)  # signed offsets -79 .. 79
-    _kernels.memory_sources_span(nodes, -79, *rules[:4], 2, *rules[4:], 32, span)
-    m = np.arange(-79, 80)
-    keep = (m != 0) & (m != -1)
-    assert np.array_equal(span[keep], full[m[keep] % nodes])
-
-
 MATERIALS = {"sls3": Prony.standard_linear_solid(3.0),
              "sls700": Prony.standard_linear_solid(700.0),
              "prony2": Prony(1.0, (0.5, 0.3), (0.01, 10.0))}
