@@ -108,11 +108,34 @@ def _verdict(path):
     return json.loads((path / "verdict.json").read_text(encoding="utf-8"))
 
 
+def _bem_misses(case, nodes):
+    """What viscosine's BEM on ``nodes`` panels misses the case's reference by, per scalar (the
+    verdict's measure) and for the edges, its scalars derived from its fields: the grid law's
+    e_N, recomputed here from the public pieces."""
+    point, c = verify.point_from_case(case)
+    ref = verify.reference_for(point, c)
+    sc, patches = verify.scalars_from_fields(verify.viscosine_bem(point, nodes), ref.shape)
+    out = {}
+    for k, (value, _) in ref.scalars.items():
+        if sc.get(k) is not None:
+            out[k] = abs(sc[k] - value) / (abs(value) if k in verify.REL and value else 1.0)
+    if ref.patches:
+        out["edges"] = max(abs(p[e] - r[e]) for p, r in zip(patches, ref.patches)
+                           for e in ("trailing_edge", "leading_edge"))
+    return out
+
+
+def _scalar_rows(doc):
+    return {q["key"]: q for q in doc["quantities"] if q["key"] not in verify.FIELD_LAW}
+
+
 @pytest.mark.parametrize("nodes", [512, 4096])
 def test_defaults_pass_viscosine_bem_and_state_each_tolerance(tmp_path, capsys, nodes):
     """A correct solver at the resolutions people run passes by default: viscosine's BEM on
     N = 512 and 4096 panels (its σ L∞ is 1.2e-2 and 1.1e-2 of max σ there, where 1e-4 used to be
-    asked), and the verdict says each tolerance and why, one line each."""
+    asked), and the verdict says each tolerance and why, one line each.  A scalar's or the
+    edges' tolerance is max(1e-4, 3 e_N), e_N the larger of the BEM's error at N and half its
+    error at N/2."""
     rc, out, err = _run(capsys, "--case", CASE, "--callable", "comparisons.verify:viscosine_bem",
                         "--nodes", str(nodes), "--out", str(tmp_path), "--no-figures")
     assert rc == 0, out + err
@@ -124,12 +147,90 @@ def test_defaults_pass_viscosine_bem_and_state_each_tolerance(tmp_path, capsys, 
                                                        rel=1e-6)
         assert f"N = {nodes}" in rows[key]["tolerance_reason"]
     assert rows["pressure_Linf"]["tolerance"] == pytest.approx(1.4 / np.sqrt(nodes * c), rel=1e-3)
-    assert rows["mu"]["tolerance"] == 1e-4
+    half = _bem_misses(CASE, nodes // 2)
+    scalars = _scalar_rows(doc)
+    for key, row in scalars.items():  # the solver is the BEM: its difference is the error at N
+        e_n = max(row["difference"], half[key] / 2)
+        assert row["tolerance"] == pytest.approx(max(1e-4, 3 * e_n), rel=1e-9), key
+        assert f"N = {nodes}" in row["tolerance_reason"]
     lines = [ln for ln in out.splitlines() if ln.startswith("tolerance: ")]
     assert lines == [f"tolerance: {t}" for t in doc["tolerances"]]
-    assert len(lines) == 7  # the scalars, five field norms, the edges
+    # one line per tolerance as printed (the floor's quantities share one), and the five norms
+    assert len(lines) == len({f"{q['tolerance']:.1e}" for q in scalars.values()}) + 5
     assert any("σ L∞ / max σ" in ln and "square-root contact edge" in ln for ln in lines)
+    assert all(len(ln) < 230 for ln in lines if "e_N" in ln)
     assert doc["diagnosis"] == []
+
+
+@pytest.mark.parametrize("case", ["sls-light-v1", "sls-below-fc-v1", "sls-ratio1000-full"])
+def test_defaults_pass_viscosine_bem_where_its_grid_error_exceeds_1e_4(tmp_path, capsys, case):
+    """Where viscosine's BEM on 512 panels misses the reference by more than 1e-4 (a contact of
+    28 panels, s/h small below the transition, a relaxation layer of 0.02 panel), the default
+    allows 3 × that error, and says so; it used to fail these by default."""
+    rc, out, err = _run(capsys, "--case", case, "--callable", "comparisons.verify:viscosine_bem",
+                        "--nodes", "512", "--out", str(tmp_path), "--no-figures")
+    assert rc == 0, out + err
+    wide = {k: q for k, q in _scalar_rows(_verdict(tmp_path)).items() if q["difference"] > 1e-4}
+    assert wide  # the grid law, not 1e-4, passes them
+    for key, row in wide.items():
+        assert row["tolerance"] >= 3 * row["difference"]
+        assert "N = 512: e_N = " in row["tolerance_reason"]
+        assert f"{verify.LABELS[key]}" in next(ln for ln in out.splitlines()
+                                               if ln.startswith("tolerance: ")
+                                               and f"{row['tolerance']:.1e}" in ln)
+
+
+FOURIER = """import numpy as np
+import analytic
+
+
+def solve(point, nodes):
+    # one grid, unshifted: x_j = j/N - 1/2, as viscosine_bem lays out its panel centres
+    kw = {k: point[k] for k in ("load", "penetration", "speed", "ratio", "hk") if k in point}
+    r = analytic.fourier_solve(nodes=int(nodes), shifts=1, **kw)
+    if not r.success:
+        raise RuntimeError(r.message)
+    return {k: np.asarray(getattr(r, k))
+            for k in ("x_over_lambda", "pressure", "displacement", "gap")}
+"""
+
+
+@pytest.mark.parametrize("case", [CASE, "sls-light-v1"])
+def test_defaults_pass_an_independent_solver(tmp_path, capsys, case):
+    """The Fourier-collocation solver (analytic.fourier_solve: dense collocation on points,
+    no code shared with bem/), its fields on one grid of 512 points, passes by default."""
+    (tmp_path / "fourier_solver.py").write_text(FOURIER, encoding="utf-8")
+    rc, out, err = _run(capsys, "--case", case, "--callable",
+                        f"{tmp_path}/fourier_solver.py:solve", "--nodes", "512",
+                        "--out", str(tmp_path / "rep"), "--no-figures")
+    assert rc == 0, out + err
+    doc = _verdict(tmp_path / "rep")
+    assert doc["nodes"] == 512 and len(doc["quantities"]) == 15
+
+
+def test_the_grid_law_needs_the_grid_and_yields_to_rtol(tmp_path, capsys):
+    """Scalars without nodes get 1e-4 ('the grid is not known'); with nodes, the grid law of
+    that N; an explicit --rtol is a flat tolerance of every scalar, as asked."""
+    mu = suite.get_case(CASE)["certified"]["scalars"]["mu"]["value"]
+    case = "sls-ratio1000-full"
+    mu_full = suite.get_case(case)["certified"]["scalars"]["mu"]["value"]
+    path = tmp_path / "s.jsonl"
+    path.write_text(json.dumps({"mu": mu * (1 + 5e-5)}) + "\n", encoding="utf-8")
+    rc, out, _ = _run(capsys, "--case", CASE, "--scalars", str(path), "--out",
+                      str(tmp_path / "a"), "--no-figures")
+    assert rc == 0 and "tolerance: μ: 1.0e-04, the default --rtol 1.0e-04" in out
+    assert "the grid is not known" in out
+    # 1 % off at N = 512 where the BEM itself is 1 % off: within the grid law, outside --rtol
+    path.write_text(json.dumps({"nodes": 512, "mu": mu_full * 1.01}) + "\n", encoding="utf-8")
+    rc, out, _ = _run(capsys, "--case", case, "--scalars", str(path), "--out",
+                      str(tmp_path / "b"), "--no-figures")
+    e_n = max(_bem_misses(case, 512)["mu"], _bem_misses(case, 256)["mu"] / 2)
+    row = _scalar_rows(_verdict(tmp_path / "b"))["mu"]
+    assert rc == 0 and row["tolerance"] == pytest.approx(3 * e_n, rel=1e-9)
+    assert row["tolerance"] > 0.01
+    rc, out, _ = _run(capsys, "--case", case, "--scalars", str(path), "--rtol", "1e-3", "--out",
+                      str(tmp_path / "c"), "--no-figures")
+    assert rc == 1 and "tolerance: μ: 1.0e-03, --rtol 1.0e-03" in out
 
 
 def test_the_measured_field_constants_hold():
