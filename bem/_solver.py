@@ -980,7 +980,8 @@ def _estimate(scalars, material, speed):
     to 7e-14 h).  Returns
     (estimate, reason, note): reason is None when the grids resolve the contact, else why the
     estimate is not trusted yet; note says what the estimate includes for the memory lengths
-    the grids do not resolve (None when they resolve them all).
+    the grids do not resolve (None when they resolve them all, or when every grid of the run is
+    in full contact: no edges, no inner layers).
     """
     if len(scalars) < 3:
         return None, "fewer than three converged grids", None
@@ -1020,7 +1021,10 @@ def _estimate(scalars, material, speed):
     if a["min_panels"] < MIN_PATCH_PANELS:
         reason = f"a contact patch spans {a['min_panels']} panels at N={n0} " \
                  f"(at least {MIN_PATCH_PANELS} are needed)"
-    shift = _unresolved_memory(material, speed, n0, a.get("panels"))
+    # full contact has no edges, hence no inner layers: a single harmonic per mode, which the
+    # exact panel coefficients give to O(1/N^2) whatever the memory lengths (Appendix B)
+    full = all(sc["contact_fraction"] == 1.0 for _, sc in run)
+    shift = 0.0 if full else _unresolved_memory(material, speed, n0, a.get("panels"))
     note = None
     if shift > 0.0:
         for k in est:

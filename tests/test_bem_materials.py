@@ -54,6 +54,22 @@ def test_full_contact_has_the_closed_form_of_any_series(material, speed):
     assert below.success and not below.full_contact
 
 
+@pytest.mark.parametrize("speed", [0.3, 1.0])
+def test_full_contact_is_answered_on_a_coarse_grid_whatever_the_memory_lengths(speed):
+    """Full contact has no edges, so no inner layer for a memory length below a panel to miss:
+    the adaptive default answers on a coarse grid (the shortest memory of BROAD, 5e-6 … 1.6e-5
+    λ here, spans 4 panels only beyond N = 2.5e5), its estimate carries no edge shift, and it
+    covers the true error against the closed form."""
+    hk = 0.8
+    load = 1.2 * _full_contact(BROAD, speed, 1.0, hk)["load_fc"]
+    exact = _full_contact(BROAD, speed, load, hk)
+    r = bem.solve(load=load, speed=speed, material=BROAD, profile=bem.Sinusoid(hk))
+    assert r.success and r.full_contact and r.nodes <= 8192
+    assert "memory length" not in (r.diagnostics.get("estimate_note") or "")
+    assert abs(r.mu / exact["mu"] - 1.0) <= r.error_estimate["mu"] <= 1e-6
+    assert abs(r.ke_hat - exact["ke_hat"]) <= r.error_estimate["ke_hat"]
+
+
 @pytest.mark.parametrize("speed", [0.01, 1.0, 100.0])
 def test_splitting_a_term_in_two_halves_changes_nothing(speed):
     whole = bem.solve(load=0.2, speed=speed, material=PRONY4, nodes=2048)
