@@ -31,7 +31,7 @@ from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._front import solve_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
-from ._result import BemResult, Patch
+from ._result import MESSAGES, BemResult, Patch
 from ._solver import _check_positive_int, _check_real, solve
 
 
@@ -61,6 +61,6 @@ def influence_coefficients(material, speed, nodes):
     return _coefficients(material.j_plus, material.terms, speed, nodes)
 
 
-__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "MAX_NODES", "Patch", "Prony",
+__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "MAX_NODES", "MESSAGES", "Patch", "Prony",
            "SampledProfile", "Sinusoid", "influence_coefficients", "read_profile", "read_prony",
            "solve", "solve_si", "sweep", "validate"]

@@ -14,13 +14,9 @@ import numpy as np
 from . import _kernels
 from ._inputs import Prony, Sinusoid, _direct
 from ._operator import WindowOperator
-from ._result import BemResult, Patch
+from ._result import CONVERGED, STATUS_INVALID, STATUS_TARGET, BemResult, Patch
 
 _TWO_PI = 2.0 * math.pi
-#: status of a converged result that fails the validity gate
-STATUS_INVALID = 4
-#: the adaptive mesh reached max_nodes before its estimated errors met rtol
-STATUS_TARGET = 5
 #: relative round-off allowed on σ ≥ 0 (over max σ), gap ≥ 0 (over h), Δ/h ≤ 1, ka ≤ π
 ROUNDOFF = 1e-12
 #: mean σ = load, relative (the Krylov tolerance bounds the load equation well below this)
@@ -630,7 +626,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         gap_out = np.where(active, 0.0, gap) / amp
     mu = tau_f / mean_p if mean_p > 0 else math.nan
     status = int(res["status"])
-    success = status == 0
+    success = status == CONVERGED
     message = res["message"]
     if status == STATUS_TARGET:
         message = (f"{message}; residuals of N={n}: "

@@ -12,6 +12,23 @@ import numpy as np
 from viscosine import Fields, _protocol
 from viscosine._protocol import SCALAR_KEYS, _plain
 
+#: BemResult.status: one name per outcome (as scipy.optimize's status codes), and MESSAGES says
+#: what each means.  The solver's messages add the particulars (residuals, grids, estimates).
+CONVERGED = 0
+OUTER_EXHAUSTED = 1
+KRYLOV_FAILED = 2
+CYCLED = 3
+STATUS_INVALID = 4
+STATUS_TARGET = 5
+MESSAGES = MappingProxyType({
+    CONVERGED: "converged",
+    OUTER_EXHAUSTED: "the active-set (outer) iterations were exhausted",
+    KRYLOV_FAILED: "a Krylov solve did not reach tol",
+    CYCLED: "the active set cycled",
+    STATUS_INVALID: "converged, but the answer failed the validity gate",
+    STATUS_TARGET: "the adaptive mesh stopped before its estimated errors met rtol",
+})
+
 
 @dataclass(frozen=True)
 class Patch(_protocol.Patch):
@@ -69,7 +86,8 @@ class BemResult:
     status : int
         0 converged; 1 outer iterations exhausted; 2 a Krylov solve failed;
         3 the active set cycled; 4 converged but physically invalid; 5 the adaptive mesh
-        reached ``max_nodes`` before its estimated errors met ``rtol``.
+        stopped (at ``max_nodes``, or on grids that did not converge) before its estimated
+        errors met ``rtol``.  ``bem.MESSAGES`` maps each code to its meaning.
     message : str
     nit : int
         Active-set (outer) iterations on the finest grid.

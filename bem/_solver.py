@@ -45,11 +45,12 @@ from viscosine import ViscosineWarning
 from . import _assemble, _kernels
 from ._influence import influence_coefficients_nd
 from ._accepted import MAX_NODES, validate
-from ._assemble import (ROUNDOFF, STATUS_TARGET, _full_patch, _patches, _runs,
+from ._assemble import (ROUNDOFF, _full_patch, _patches, _runs,
                         _window_friction, build_result, edge_lag_reach, edge_lags)
 from ._inputs import Prony, Sinusoid, _bad
 from ._operator import CirculantOperator, WindowOperator, gmres
-from ._result import BemResult
+from ._result import (CONVERGED, CYCLED, KRYLOV_FAILED, OUTER_EXHAUSTED, STATUS_TARGET,
+                      BemResult)
 
 
 #: status of a contact-window grid whose contact reaches the window's ends (never returned:
@@ -254,7 +255,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     n = grid.n
     seen = {}
     inner = []
-    status, message = 1, "outer iterations exhausted"
+    status, message = OUTER_EXHAUSTED, "outer iterations exhausted"
     relres = 0.0
     sigma = sigma0  # the caller's start, not used after
     s = s0
@@ -313,7 +314,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             gap += s
             del product
         if not ok:
-            status = 2
+            status = KRYLOV_FAILED
             message = (f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
                        + (f" = {relres / grid.scale:.3e} of the window's drop)"
                           if grid.window else ")"))
@@ -341,13 +342,13 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             seen.clear()
             key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
         if key is None:
-            status, message = 0, ("converged" if roundoff < CYCLE_ROUNDOFF else
+            status, message = CONVERGED, ("converged" if roundoff < CYCLE_ROUNDOFF else
                                   "converged (at the validity gate's round-off, after a cycle)")
             if grid.window and (active[0] or active[-1]):
                 status, message = WINDOW_FAILED, "the contact reaches an end of its window"
             break
         if key in seen:
-            status, message = 3, f"active set cycles (outer step {it} repeats step {seen[key]})"
+            status, message = CYCLED, f"active set cycles (outer step {it} repeats step {seen[key]})"
             break
         seen[key] = it
         active = new.copy()
@@ -690,16 +691,16 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         else:
             res = _solve_one(grid, load, sep, start, tol, steps, restart, max_inner,
                              elastic=elastic)
-        if res["status"] != 0 and (levels[:-1] or direct) and n <= MAX_NODES_RETRY:
+        if res["status"] != CONVERGED and (levels[:-1] or direct) and n <= MAX_NODES_RETRY:
             # the coarser contact can be a poor start where the finer grid first resolves a
             # memory length; try once more from the elastic contact on this grid (not on the
             # largest grids, where a failing retry costs minutes)
             retry = _solve_one(grid, load, sep, [None], tol,
                                max_outer if n <= MAX_NODES_FULL_RETRY else steps, restart,
                                max_inner, elastic=elastic)
-            if retry["status"] == 0 or good is None:
+            if retry["status"] == CONVERGED or good is None:
                 res = retry
-        if res["status"] != 0 and not levels and harmonic != elastic:
+        if res["status"] != CONVERGED and not levels and harmonic != elastic:
             # the first grid failed from the relaxed contact: try from the elastic contact with
             # the compliance |J*| of the first harmonic at this speed, near the glassy one at
             # high speed (from the relaxed contact a stiff material at high speed shrinks its
@@ -707,13 +708,13 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
             # Only there: on a finer grid the coarser contact is the better start
             retry = _solve_one(grid, load, sep, [None], tol, max_outer, restart, max_inner,
                                elastic=harmonic)
-            if retry["status"] == 0:
+            if retry["status"] == CONVERGED:
                 res = retry
         levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
         last = (res, grid)
         # an unconverged grid still gives the next one a better start than none
         best = (res, grid)
-        if res["status"] != 0:
+        if res["status"] != CONVERGED:
             failed += 1
             if nodes is None and failed >= (2 if scalars else MAX_FAILED_FROM_SCRATCH):
                 # two finer grids in a row failed after a converged one (or the first few
@@ -824,7 +825,7 @@ def _window_refine(res, pgrid, profile, material, speed, load, rtol, tol, max_ou
             grid.form_nodes = levels[0][0]  # one friction form per window
         wres = _solve_one(grid, load, None, [start], tol, max_outer, restart, max_inner)
         levels.append((nodes, wres["nit"], tuple(wres["inner"]), wres["status"]))
-        if wres["status"] != 0:
+        if wres["status"] != CONVERGED:
             note = wres["message"]
             break
         values = _level_scalars(wres, grid, profile, material, speed, grid.amp)
@@ -876,13 +877,13 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
         s = float(grid.y.mean())
         return {"sigma": full, "s": s, "active": np.ones(n, np.bool_),
                 "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
-                "relres": 0.0, "status": 0, "message": "converged"}
+                "relres": 0.0, "status": CONVERGED, "message": "converged"}
     if best is None and elastic is not None:
         # no coarser grid: start from the elastic contact on this grid (a symmetric
         # positive-definite problem, on which the active-set method converges from anywhere)
         eg = _Grid(elastic[0], elastic[1], 0.0, n)
         er = _solve_one(eg, load, sep, [None], tol, max(max_outer, 50), restart, max_inner)
-        if er["status"] == 0:
+        if er["status"] == CONVERGED:
             best = (er, eg)
     if best is None:
         if load is not None:

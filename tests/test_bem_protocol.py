@@ -170,12 +170,24 @@ def test_extremes_inside_are_solved(kw):
     assert json.loads(json.dumps(r.as_dict(), allow_nan=False))["success"]
 
 
+def test_every_status_has_its_meaning():
+    """bem.MESSAGES names every status a result can carry; success is status 0 alone."""
+    assert sorted(bem.MESSAGES) == list(range(6)) and bem.MESSAGES[0] == "converged"
+    ok = bem.solve(load=0.3, speed=1.0, nodes=256)
+    capped = bem.solve(load=0.3, speed=0.1, max_nodes=1024)
+    exhausted = bem.solve(load=0.3, speed=1.0, nodes=1024, max_outer=1)
+    for r, status in ((ok, 0), (capped, 5), (exhausted, 1)):
+        assert r.status == status and r.success == (status == 0), r.message
+        assert r.status in bem.MESSAGES
+
+
 # ------------------------------------------------------------------------------ validity gate
 def test_broken_state_is_not_a_success(monkeypatch):
     real = _assemble._friction
     monkeypatch.setattr(_assemble, "_friction", lambda *a: (-abs(real(*a)[0]) - 1.0, 0.0))
     r = bem.solve(load=0.3, speed=1.0, nodes=64)
     assert not r.success and r.status == _assemble.STATUS_INVALID
+    assert bem.MESSAGES[r.status] == "converged, but the answer failed the validity gate"
     assert "tau_f" in r.message and "invalid result" in r.message
     assert r.as_dict()["success"] is False and r.as_dict()["patches"] == []
     monkeypatch.setattr(_assemble, "_friction", lambda *a: (math.nan, 0.0))
