@@ -35,12 +35,11 @@ from __future__ import annotations
 
 import math
 import numbers
-import os
 import warnings
 
 import numpy as np
 
-from viscosine import ViscosineWarning
+from viscosine import DEFAULT_RTOL, ViscosineWarning
 
 from . import _assemble, _kernels
 from ._influence import influence_coefficients_nd
@@ -525,8 +524,6 @@ WINDOW_MAX_PANELS = 2 ** 21
 WINDOW_SPAN = 6.0
 #: the finest virtual grid of a window (positions j/nodes exact; panel values finite up to 2^52)
 WINDOW_MAX_NODES = 2 ** 50
-#: the default accuracy target of the adaptive mesh
-DEFAULT_RTOL = 1e-6
 #: the error estimate is this factor times the first-order bound of the last differences
 ESTIMATE_SAFETY = 1.5
 #: a patch narrower than this many panels on the coarsest grid of an estimate is not resolved

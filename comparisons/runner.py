@@ -27,7 +27,6 @@ defence checks.
 from __future__ import annotations
 
 import hashlib
-import inspect
 import math
 import os
 import re
@@ -44,9 +43,8 @@ from viscosine import Fields, ViscosineWarning
 from viscosine._protocol import SCALAR_KEYS
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
-#: read from bem.solve when it has one, so that the two cannot drift apart)
-DEFAULTS = {"ratio": 3.0, "hk": 1.0, "rtol": 1e-6, "field_points": 1024,
-            "nodes_without_adaptive": 4096}
+#: viscosine.DEFAULT_RTOL, the one value both read)
+DEFAULTS = {"ratio": 3.0, "hk": 1.0, "rtol": viscosine.DEFAULT_RTOL, "field_points": 1024}
 #: points of the analytic fields (--nodes with --fields): 8 … 2^20 (about 10 µs per point)
 FIELD_POINTS = (8, 2 ** 20)
 #: the last line of defence: round-off allowances of the physical checks
@@ -62,32 +60,6 @@ class InputError(ValueError):
     """Input outside what is supported (command line: one line on standard error, exit 2)."""
 
 
-# ------------------------------------------------------------------------------ capabilities
-def _bem_solve_parameters():
-    import bem
-    return inspect.signature(bem.solve).parameters
-
-
-def bem_adaptive():
-    """True when the BEM refines its mesh itself (``nodes=None`` with ``rtol``)."""
-    return "rtol" in _bem_solve_parameters()
-
-
-def bem_default_rtol():
-    """The accuracy the adaptive BEM aims at by default (its own default of ``rtol``)."""
-    p = _bem_solve_parameters().get("rtol")
-    if p is not None and isinstance(p.default, float):
-        return p.default
-    return DEFAULTS["rtol"]
-
-
-def bem_nodes_range():
-    """(smallest, largest) N the BEM accepts: its own ``ACCEPTED['nodes']``."""
-    import bem
-    low, high, _ = bem.ACCEPTED["nodes"]
-    return int(low), int(high)
-
-
 # ------------------------------------------------------------------------------ specs
 def point_spec(solver, speed, load=None, penetration=None, ratio=3.0, hk=1.0, nodes=None):
     """A spec for the report and the cross-check (numbers only; BEM ``nodes`` pinned or adaptive)."""
@@ -96,10 +68,7 @@ def point_spec(solver, speed, load=None, penetration=None, ratio=3.0, hk=1.0, no
     if solver == "bem":
         spec["nodes"] = nodes
         if nodes is None:
-            if bem_adaptive():
-                spec["rtol"] = bem_default_rtol()
-            else:
-                spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
+            spec["rtol"] = DEFAULTS["rtol"]
     return spec
 
 
@@ -171,9 +140,6 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
             refuse("--rtol" if rtol is not None else "--max-nodes",
                    f"--nodes {nodes} fixes the mesh; --rtol and --max-nodes steer the adaptive "
                    "refinement (without --nodes)")
-        if (rtol is not None or max_nodes is not None) and not bem_adaptive():
-            refuse("--rtol" if rtol is not None else "--max-nodes",
-                   "this BEM has no adaptive refinement; give --nodes N")
     else:
         raise InputError(f"--solver {solver!r} is not allowed: analytic or bem")
 
@@ -198,11 +164,8 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     spec["hk"] = None if profile is not None else (DEFAULTS["hk"] if hk is None else hk)
     spec["nodes"] = nodes
     if nodes is None:
-        if bem_adaptive():
-            spec["rtol"] = bem_default_rtol() if rtol is None else rtol
-            spec["max_nodes"] = max_nodes
-        else:
-            spec["nodes"] = DEFAULTS["nodes_without_adaptive"]
+        spec["rtol"] = DEFAULTS["rtol"] if rtol is None else rtol
+        spec["max_nodes"] = max_nodes
     for option in ("profile", "prony", "material"):
         if option in files:
             info, obj = files[option]

@@ -515,14 +515,6 @@ def harmonic_heights(amplitudes, phases, samples=64):
     return np.cos(2.0 * np.pi * np.outer(x, n) + phase) @ np.asarray(amplitudes, float)
 
 
-def profile_file_text(heights, comment) -> str:
-    """A profile file (format of :func:`bem.read_profile`): ``#`` comment, header, two columns."""
-    m = len(heights)
-    lines = [f"# {line}" for line in comment.splitlines()] + ["x_over_lambda,ky"]
-    lines += [f"{j / m - 0.5!r},{float(h)!r}" for j, h in enumerate(heights)]
-    return "\n".join(lines) + "\n"
-
-
 #: the generated broad spectra of the suite's Fourier-referenced cases (materials/*.txt): decades
 #: are (log10 of the shortest, of the longest) time, ratio is E∞/E0 = J0/J(0+) = E(0+)/E_r
 BROAD24 = {"terms": 24, "decades": (-6.0, 6.0), "ratio": 1000.0}

@@ -31,6 +31,11 @@ class ViscosineWarning(UserWarning):
 
 __version__ = "0.2.0"
 
+#: the accuracy the adaptive BEM aims at by default (``bem.solve(rtol=None)``, the command line
+#: without --rtol): every estimated error of mu, Delta/h, ka, ke below it.  Here, not in bem, so
+#: that the command line reads the one value without importing the solver
+DEFAULT_RTOL = 1e-6
+
 _LAZY = {"analytic", "bem", "comparisons"}
 
 
@@ -40,4 +45,4 @@ def __getattr__(name):  # the roads are imported only when asked for
     raise AttributeError(f"module 'viscosine' has no attribute {name!r}")
 
 
-__all__ = ["Fields", "SIResult", "ViscosineWarning", "__version__", "analytic", "bem", "comparisons"]
+__all__ = ["DEFAULT_RTOL", "Fields", "SIResult", "ViscosineWarning", "__version__", "analytic", "bem", "comparisons"]
