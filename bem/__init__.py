@@ -5,11 +5,11 @@ half-plane (plane strain, frictionless, adhesionless).  In the frame of the
 indenter the steady surface displacement is ``v = Phi_V * sigma`` over one
 period (eq. 2.4) with the kernel of eq. (2.5), discretised on N equal panels
 (piecewise-constant pressure, collocation at the panel centres) and solved with a
-primal-dual active-set method on FFT products.  Where a Prony term's memory spans a panel but
-its pressure relaxation layer does not (stiff materials at low speed), the memory part is
-collocated a fraction of a panel downstream, which keeps the discrete pressure free of the
-sawtooth centre collocation would give there (see ``_influence.collocation_shift``).  This package never imports
-:mod:`analytic`.
+primal-dual active-set method on FFT products.  Where memories of about a panel would let the
+discrete pressure form a sawtooth (stiff materials, alone or as several Prony terms together),
+their memory parts are collocated a fraction of a panel downstream, which keeps it free of the
+sawtooth centre collocation would give there (see ``_influence.collocation_shifts``).  This
+package never imports :mod:`analytic`.
 
 Units (stated once): positions ``X = x/lambda`` with the crest of the sinusoid at
 0; heights and displacements ``k y``, ``k v`` (k = 2 pi/lambda); pressures in
