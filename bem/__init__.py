@@ -27,12 +27,12 @@ it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.
 """
 from viscosine import Fields
 
-from ._accepted import ACCEPTED, MAX_NODES, validate
+from ._accepted import ACCEPTED, MAX_NODES, _check_positive_int, _check_real, validate
 from ._front import solve_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
 from ._result import MESSAGES, BemResult, Patch
-from ._solver import _check_positive_int, _check_real, solve
+from ._solver import solve
 
 
 def influence_coefficients(material, speed, nodes):

@@ -16,6 +16,8 @@ import os
 
 from viscosine._checks import at_most_one_control, bad, check_reals, real
 
+from ._inputs import _bad
+
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is the elastic (relaxed) solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30
 #: p̃∞/(hk): the contact must span panels (the width 2a/λ ≈ (2/π)√(2p̃∞/hk) at light load)
@@ -193,3 +195,24 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
         if value is not None:
             out[name] = _integer(name, value)
     return out
+
+
+def _check_positive_int(name, value, minimum):
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise _bad(name, value, f"an integer >= {minimum}")
+    if value < minimum:
+        raise _bad(name, value, f"an integer >= {minimum}")
+    return int(value)
+
+
+def _check_real(name, value, allowed, test):
+    if isinstance(value, bool):
+        raise _bad(name, value, allowed)
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise _bad(name, value, allowed) from None
+    if not math.isfinite(v) or not test(v):
+        raise _bad(name, value, allowed)
+    return v
+

@@ -122,7 +122,7 @@ def test_dual_solve_equals_the_primal_on_the_same_contact():
     """With most panels in contact the solver works on the free panels' displacements; on the
     same active set both formulations solve the same discrete equations."""
     import numpy as np
-    from bem import _solver as S
+    from bem import _grid as S
     mat = bem.Prony.standard_linear_solid(3.0)
     grid = S._Grid(bem.Sinusoid(1.0), mat, 1.0, 2048)
     r = bem.solve(load=0.6, speed=1.0, nodes=2048)
@@ -143,7 +143,7 @@ def test_dual_solve_equals_the_primal_on_the_same_contact():
 def test_large_grid_near_transition_uses_the_free_panels_and_is_right(monkeypatch):
     """From 2^19 panels a mostly-in-contact step solves on the free panels; just below the
     transition the answer still lies within its estimate of the semi-analytic road."""
-    from bem import _solver as S
+    from bem import _grid as S
     n = S.DUAL_MIN_NODES
     calls = _spy_dual(monkeypatch)
     ref = analytic.solve(load=0.66, speed=1.0)
@@ -160,7 +160,6 @@ def test_free_panel_step_that_cycles_hands_over_to_the_primal(monkeypatch):
     at 2^20 (the rounding C^+ amplifies): its active sets cycled (refused after 39 s); after
     DUAL_MAX_STEPS of them the primal step decides, and the answer lies within its estimate of
     the semi-analytic road."""
-    from bem import _solver as S
     kw = dict(load=0.5, speed=0.01)
     calls = _spy_dual(monkeypatch)
     r = bem.solve(**kw, nodes=2 ** 20)
@@ -173,7 +172,7 @@ def test_free_panel_step_that_cycles_hands_over_to_the_primal(monkeypatch):
 
 def _spy_dual(monkeypatch):
     """Grid sizes on which the free-panel step ran."""
-    from bem import _solver as S
+    from bem import _grid as S
     calls = []
     real = S._dual_solve
 
@@ -189,7 +188,7 @@ def test_stiff_material_keeps_the_primal_step_on_large_grids(monkeypatch):
     """E_inf/E0 = 155: 1/symbol is ~50 times larger than at 3, so the free-panel step's
     rounding floor would leave ~1e-7 of the load on free panels (enough to make the active set
     cycle at 2^21); the primal step is kept, and the answer lies within its estimate."""
-    from bem import _solver as S
+    from bem import _grid as S
     kw = dict(load=0.2865632629223341, speed=0.1325833457667525, ratio=154.70144143871462,
               hk=0.853255930270687)
     n = S.DUAL_MIN_NODES
@@ -238,7 +237,7 @@ def test_penetration_estimate_has_the_round_off_floor_of_the_separation():
     """Grids that agree exactly still leave Δ/h uncertain by the gap round-off the validity
     gate allows (1e-12 h): the relative estimate is 1.5e-12/(Δ/h), larger at small Δ/h (at
     Δ/h = 4.6e-4, E∞/E0 487, N = 2^24, the true error was 3.4 × an estimate without it)."""
-    from bem import _solver as S
+    from bem import _estimate as S
     sls = bem.Prony.standard_linear_solid(3.0)
     for pen in (0.5, 4.6e-4, 1e-7):
         sc = dict(penetration=pen, tau_f=0.1, mu=0.2, contact_fraction=0.3, ka=1.0, ke=0.1,

@@ -269,7 +269,7 @@ def test_nested_and_single_grid_agree():
 def test_krylov_solve_keeps_its_last_product_for_the_gaps():
     """The last product GMRES makes is with its answer: kept over every panel it is C sigma,
     the same numbers a separate product gives (the gaps are made from it), under both controls."""
-    from bem import _solver as S
+    from bem import _grid as S
     grid = S._Grid(bem.Sinusoid(1.0), SLS, 1.0, 1024)
     idx = np.flatnonzero(np.abs(grid.x) < 0.2).astype(np.int32)
     for load, sep, x0 in ((0.3, None, np.zeros(idx.size + 1)), (None, 0.5, np.zeros(idx.size))):
@@ -313,7 +313,7 @@ def _retreat_twin(active, new, factor):
 
 
 def test_retreat_speed_up_matches_its_twin():
-    from bem import _solver as S
+    from bem import _grid as S
     rng = np.random.default_rng(7)
     for _ in range(200):
         n = int(rng.integers(8, 80))
@@ -335,7 +335,7 @@ def test_cold_start_inexact_steps_agree_with_the_plain_rule(monkeypatch):
     then steps solved to tol, reach the discrete answer of the plain rule (every step to tol,
     each removing only the panels of negative pressure) to the Krylov tolerance, in fewer
     steps (the plain rule removes about 0.4 of the excess per step: ~log2 N steps)."""
-    from bem import _solver as S
+    from bem import _grid as S
     kw = dict(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, nodes=16384, load=0.3,
               nested=False)
     fast = bem.solve(**kw)

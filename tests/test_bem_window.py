@@ -11,7 +11,7 @@ from scipy.linalg import toeplitz
 
 import analytic
 import bem
-from bem import _influence, _kernels, _solver
+from bem import _influence, _kernels, _window
 from bem._inputs import Prony
 from bem._operator import WindowOperator
 
@@ -99,7 +99,7 @@ def test_window_and_periodic_grids_agree_where_both_answer(monkeypatch):
     kw = dict(load=2e-6, speed=1.0)
     w = bem.solve(**kw)
     assert w.success and w.diagnostics["window"]["outcome"] == "target met"
-    monkeypatch.setattr(_solver, "WINDOW_MAX_FRACTION", 0.0)
+    monkeypatch.setattr(_window, "WINDOW_MAX_FRACTION", 0.0)
     p = bem.solve(**kw)
     assert p.success and "window" not in p.diagnostics
     for key in ("mu", "penetration"):
@@ -139,7 +139,7 @@ def test_window_result_fields_cover_the_period_and_are_valid():
 def test_a_window_too_small_is_not_an_answer(monkeypatch):
     """A window that the contact fills (or reaches the ends of) gives no answer: the periodic
     grids go on, and at a low cap refuse."""
-    monkeypatch.setattr(_solver, "WINDOW_SPAN", 1.0)
+    monkeypatch.setattr(_window, "WINDOW_SPAN", 1.0)
     r = bem.solve(load=1e-6, speed=1.0, max_nodes=2 ** 17)
     assert not r.success and r.status == 5
     assert "window" in r.diagnostics["window"]["outcome"], r.diagnostics["window"]
@@ -192,7 +192,7 @@ def test_a_prony_window_agrees_with_the_periodic_grids(monkeypatch):
     kw = dict(load=2e-5, speed=1.0, material=mat)
     w = bem.solve(**kw)
     assert w.success and w.diagnostics["window"]["outcome"] == "target met"
-    monkeypatch.setattr(_solver, "WINDOW_MAX_FRACTION", 0.0)
+    monkeypatch.setattr(_window, "WINDOW_MAX_FRACTION", 0.0)
     p = bem.solve(**kw)
     assert p.success
     for key in ("mu", "penetration"):

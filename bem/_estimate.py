@@ -1,0 +1,176 @@
+"""The a-posteriori error estimate of the adaptive mesh: the scalars of each converged grid,
+their differences over the last three or four grids, and the bound on what the grids cannot see
+(memory lengths under a few panels)."""
+from __future__ import annotations
+
+import math
+
+from . import _assemble
+from ._assemble import (ROUNDOFF, _full_patch, _patches, _window_friction, edge_lag_reach,
+                        edge_lags)
+
+
+#: the error estimate is this factor times the first-order bound of the last differences
+ESTIMATE_SAFETY = 1.5
+#: a patch narrower than this many panels on the coarsest grid of an estimate is not resolved
+MIN_PATCH_PANELS = 8
+#: a Prony term's memory length w tau_i/(2 pi) (in wavelengths) is resolved from this many panels
+MIN_MEMORY_PANELS = 4.0
+#: what the edge fits' memory-lag correction (`edge_lags`) may leave of a term's first-order
+#: edge shift, in the estimate's bound
+LAG_RESIDUAL = 0.1
+#: keys of the error estimate: relative for these, absolute for the others
+RELATIVE_KEYS = ("penetration", "tau_f", "mu")
+ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f", "mu")
+
+
+def _level_scalars(res, grid, profile, material, speed, amp):
+    """The scalars of one converged grid (for the estimate): plain floats, None where null."""
+    sigma = res["sigma"]
+    active = res["active"]
+    if grid.window:
+        tau_f = _window_friction(sigma, grid, material, speed)
+        mean_p = float(sigma.sum()) / grid.nodes
+        res["friction"] = (tau_f, None)  # build_result's, should this grid be the answer
+    else:
+        res["friction"] = _assemble._friction(sigma, grid.y, material, speed)
+        tau_f = res["friction"][0]
+        mean_p = float(sigma.mean())
+    out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,
+           "mu": tau_f / mean_p if mean_p > 0 else math.nan,
+           # the gaps' round-off that the validity gate allows, over h (ROUNDOFF of the scale)
+           "gap_roundoff": ROUNDOFF * (grid.scale / amp),
+           "panels": grid.n}
+    if active.all():
+        p = _full_patch(sigma, grid.y, profile, mean_p)
+        out.update(contact_fraction=1.0, ka=math.pi, ke=None, ke_hat=p.ke_hat, npatch=1,
+                   min_panels=grid.n)
+        return out
+    patches = _patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y, grid.window,
+                       edge_lags(material, speed, grid.h, grid.n))
+    res["patches"] = patches  # the next grid's start needs their edges too
+    frac = float(sum(p.width for p in patches))
+    out.update(contact_fraction=frac, npatch=len(patches),
+               min_panels=min(p.panels for p in patches))
+    if len(patches) == 1:
+        p = patches[0]
+        out.update(ka=p.ka, ke=p.ke, ke_hat=p.ke_hat)
+    else:
+        out.update(ka=None, ke=None, ke_hat=None)
+    return out
+
+
+def _unresolved_memory(material, speed, nodes, panels=None):
+    """Bound on the contact-edge error of the Prony terms whose memory length
+    ``L_i = w tau_i/(2 pi)`` (wavelengths) spans fewer than MIN_MEMORY_PANELS panels of `nodes`
+    (``panels``: the panels the edge fits see, when not a period's, as for `edge_lags`).
+
+    A grid that does not resolve ``L_i`` misses the inner layer of the term at the contact
+    edges, whose effect on the edges is first order in ``L_i``: ``pi L_i J_i/(J_i + J_loc)`` on
+    ka and ke, with ``J_loc = J(0+) + sum of J_j over the terms of shorter memory`` (what acts at
+    once on the scale ``L_i``).  For the standard linear solid this is ``(1 - 1/rho) w/2``, the
+    first-order retreat of the trailing edge at low speed.  The edge fits correct it for the
+    terms far below the fitted distances (`edge_lags`): their part of the bound is
+    LAG_RESIDUAL of it (measured on the standard linear solid against the semi-analytic road,
+    N = 512 ... 65536, E_inf/E0 = 3 and 1000: at most 0.083 of the first-order shift is left,
+    against all of it without the correction).  The others (up to MIN_MEMORY_PANELS panels)
+    keep it whole.  The bound is carried by the estimate; it is not a reason to refine.
+    """
+    h = 1.0 / nodes
+    corrected = edge_lag_reach(h, nodes if panels is None else panels)
+    bound = 0.0
+    j_loc = material.j_plus
+    for j, t in sorted(material.terms, key=lambda jt: jt[1]):
+        length = speed * t / (2.0 * math.pi)
+        if j > 0.0 and length < MIN_MEMORY_PANELS * h:
+            share = LAG_RESIDUAL if length <= corrected else 1.0
+            bound += share * math.pi * length * j / (j + j_loc)
+        j_loc += j
+    return bound
+
+
+def _estimate(scalars, material, speed):
+    """A-posteriori error estimate from the last converged grids N/8 (when there), N/4, N/2, N.
+
+    Each scalar q is assumed to converge at least at first order in 1/N, so the error of q_N is
+    bounded by |q_N - q_N/2| and, against accidentally small differences (the edges' position in
+    their panels makes the errors oscillate: two grids can agree by chance), by
+    |q_N - q_N/2^j|/2^(j-1) and |q_N/2^(j-1) - q_N/2^j|/2^(j-1) for j = 2, 3; the estimate is
+    ESTIMATE_SAFETY times the largest (relative to |q_N| for Delta/h, tau_f and mu).  Delta/h
+    adds ESTIMATE_SAFETY times the validity gate's round-off of a gap (1e-12 h), below which no
+    separation is certified (measured: 2.6e-13 h at Delta/h = 4.6e-4, where the grids agreed
+    to 7e-14 h).  Returns
+    (estimate, reason, note): reason is None when the grids resolve the contact, else why the
+    estimate is not trusted yet; note says what the estimate includes for the memory lengths
+    the grids do not resolve (None when they resolve them all, or when every grid of the run is
+    in full contact: no edges, no inner layers).
+    """
+    if len(scalars) < 3:
+        return None, "fewer than three converged grids", None
+    run = [scalars[-1]]
+    for n, sc in reversed(scalars[:-1]):
+        if len(run) == 4 or n * 2 != run[-1][0]:
+            break
+        run.append((n, sc))
+    if len(run) < 3:
+        return None, "no three consecutive converged grids", None
+    counts = {sc["npatch"] for _, sc in run}
+    if len(counts) > 1:
+        return None, ("the number of contact patches changes with N (" +
+                      ", ".join(str(sc["npatch"]) for _, sc in reversed(run)) + ")"), None
+    est = {}
+    for k in ESTIMATE_KEYS:
+        vals = [sc[k] for _, sc in run]  # fine to coarse
+        if any(v is None for v in vals):
+            est[k] = None
+            continue
+        cands = [abs(vals[0] - vals[1])]
+        for j in range(2, len(vals)):
+            w = 0.5 ** (j - 1)
+            cands += [w * abs(vals[0] - vals[j]), w * abs(vals[j - 1] - vals[j])]
+        e = ESTIMATE_SAFETY * max(cands)
+        if k == "penetration":
+            # the validity gate counts gaps within ROUNDOFF of their scale (h; a window's drop)
+            # as zero: the separation is not certified below that, whatever the grids agree to
+            # (it shows where Delta/h is small)
+            e += ESTIMATE_SAFETY * max(sc["gap_roundoff"] for _, sc in run)
+        if k in RELATIVE_KEYS:
+            scale = abs(vals[0])
+            e = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
+        est[k] = e
+    reason = None
+    n0, a = run[min(2, len(run) - 1)]  # N/4: the coarsest grid every estimate uses
+    if a["min_panels"] < MIN_PATCH_PANELS:
+        reason = f"a contact patch spans {a['min_panels']} panels at N={n0} " \
+                 f"(at least {MIN_PATCH_PANELS} are needed)"
+    # full contact has no edges, hence no inner layers: a single harmonic per mode, which the
+    # exact panel coefficients give to O(1/N^2) whatever the memory lengths (Appendix B)
+    full = all(sc["contact_fraction"] == 1.0 for _, sc in run)
+    shift = 0.0 if full else _unresolved_memory(material, speed, n0, a.get("panels"))
+    note = None
+    if shift > 0.0:
+        for k in est:
+            if est[k] is not None:
+                est[k] += ESTIMATE_SAFETY * shift
+        note = (f"a memory length w tau_i/(2 pi) spans fewer than {MIN_MEMORY_PANELS:g} "
+                f"panels at N={n0}: its edge shift, up to {shift:.1e}, is in the estimate")
+    return est, reason, note
+
+
+def _met(estimate, values, rtol):
+    """Whether the estimate meets rtol on mu, Delta/h (relative) and ka, ke (absolute; the
+    contact fraction times pi where several patches leave ka and ke undefined)."""
+    keys = ["mu", "penetration"]
+    keys += ["ka", "ke"] if values["npatch"] == 1 else ["contact_fraction"]
+    for k in keys:
+        e = estimate.get(k)
+        if e is None:
+            if k == "ke" and values["ke"] is None:  # full contact: no ke
+                continue
+            return False
+        if k == "contact_fraction":
+            e = math.pi * e
+        if not e <= rtol:
+            return False
+    return True
+

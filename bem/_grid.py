@@ -1,0 +1,444 @@
+"""One grid: primal-dual active set outside, preconditioned GMRES inside.
+
+Discrete problem on N panels (units of :mod:`bem`: ``k y``, ``k v``, pressure in
+``E_ref/(1 - nu^2)``)::
+
+    gap_i = (C sigma)_i - y_i + s >= 0,   sigma_i >= 0,   sigma_i gap_i = 0,
+    mean(sigma) = load            (load control; s unknown), or
+    s given                       (penetration control; the load is an output).
+
+Here ``y`` is the profile minus its mean, ``C`` the circulant of eq. (2.4)-(2.5)
+and ``s`` the mean separation (the mean gap, because ``mean(C sigma) = 0``).
+
+Outer iteration: primal-dual active set (a semi-smooth Newton method for the
+complementarity conditions).  On the active set A the linear system is
+``(C sigma)_A + s = y_A`` with ``sigma = 0`` off A (plus the load equation),
+solved by GMRES on FFT products, right-preconditioned by the restriction of
+the inverse circulant ``P = R C^+ R^T`` (symbol ``~ |n|/(2 J*(n))``) with an
+exact block elimination of ``s``.  The operator is not symmetric (only its
+symmetric part is positive definite), hence GMRES and not conjugate gradients.
+A grid starts from the solved coarser one (`_prolong`), else from the elastic contact.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from . import _kernels
+from ._assemble import _patches, _runs
+from ._influence import influence_coefficients_nd
+from ._inputs import Prony
+from ._operator import CirculantOperator, gmres
+from ._result import CONVERGED, CYCLED, KRYLOV_FAILED, OUTER_EXHAUSTED
+
+
+#: status of a contact-window grid whose contact reaches the window's ends (never returned:
+#: the adaptive mesh then answers from its periodic grids)
+WINDOW_FAILED = 6
+#: first grid of the refinement sequence (coarser grids only ever gave a start)
+START_NODES = 512
+#: grids from which a mostly-in-contact step solves on the free panels (_dual_solve): there the
+#: memory matters, and the separation it gives differs from the primal step's by ~1e-11
+#: relative (rounding amplified by C^+), far below the discretisation error at such N; on
+#: smaller grids the primal step, whose gaps meet the Krylov tolerance exactly, is kept
+DUAL_MIN_NODES = 2 ** 19
+#: ... and where its rounding floor (_dual_floor) is at most this fraction of the load: the
+#: standard linear solid with E_inf/E0 = 3 up to 2^21 panels; stiffer materials, whose floor
+#: reaches 1e-7 of the load and lets pressures of that size sit on free panels, keep the primal
+DUAL_MAX_FLOOR = 2e-8
+#: a cold start's Krylov tolerance (as tol) until its active set settles: the decisions of
+#: those steps need no more (the paper's point at 2^20: 1e-5, 1e-6, 1e-7 take 169, 143, 175
+#: FFT pairs; a tolerance relative to each step's first residual let it grow without bound
+#: where the first steps were far off)
+COLD_KRYLOV_TOL = 1e-6
+#: ... and a patch end that retreats by m >= 2 panels in such a step retreats by this times m
+#: more: from too wide a set, each step removes about 0.4 of the excess (the pressure of the
+#: wider set crosses zero that far inside), so the plain rule needs ~log2(N) steps (18 at 2^20)
+RETREAT_FACTOR = 1.0
+#: free-panel steps on one grid after which a set that still changes is decided by the primal
+#: step (from a converged coarser grid it settles in 1 or 2; at E_inf/E0 = 3, V/V0 = 0.01,
+#: 4e-5 below the full-contact load, it wandered 13 steps at 2^21 before a set repeated)
+DUAL_MAX_STEPS = 3
+#: restart length of the second try of a Krylov solve that stagnated with `restart` (the
+#: default 8 can stagnate for E_inf/E0 in the hundreds; 40 has not been seen to)
+KRYLOV_RETRY_RESTART = 40
+#: memory bound of that second try's Krylov basis (40 vectors of 2^21 panels)
+KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
+#: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
+ACTIVE_SET_ROUNDOFF = 2e-13
+#: ... and once the sets have cycled: just inside the validity gate's 1e-12
+CYCLE_ROUNDOFF = 9e-13
+
+
+class _Grid:
+    def __init__(self, profile, material: Prony, speed: float, nodes: int):
+        self.n = nodes
+        self.h = 1.0 / nodes
+        self.op = CirculantOperator(
+            influence_coefficients_nd(material.j_plus, material.terms, speed, nodes))
+        y = profile.sample(nodes)
+        self.y = y - y.mean()  # rounding only: samples have zero mean
+        self.amp = float(profile.amplitude)
+        self.nodes = nodes      # panels per period
+        self.scale = self.amp   # of the heights and gaps (the Krylov and active-set allowances)
+        self.s_offset = 0.0     # the mean separation is s_offset + s
+        self.window = False
+
+    @property
+    def x(self):
+        """Panel centres X_j = j/N - 1/2, made when asked (not kept: memory at large N)."""
+        return np.arange(self.n) / self.n - 0.5
+
+
+def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
+    def apply(x):
+        return op.apply_on(idx, x, inverse=True)
+
+    return apply
+
+
+def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
+    """Solve on the active set; returns (sigma_full, s, iterations, relres, ok, C sigma on
+    every panel).  The last product GMRES makes is with its answer, so that product over all
+    panels is C sigma: kept, it gives the gaps without another transform."""
+    op = grid.op
+    held = [None]
+
+    def product(values):
+        held[0] = None  # memory: one whole product alive at a time
+        held[0] = op.apply_on(idx, values, whole=True)
+        return held[0][idx]
+
+    n = grid.n
+    na = idx.size
+    pinv = _restricted_inverse(op, idx)
+    per = grid.nodes  # the load is the mean over the period
+    if load is not None:
+        q = pinv(np.ones(na))
+        beta = q.sum() / per
+        # the load equation is scaled by scale/load so that the absolute Krylov tolerance
+        # (tol times the scale of the heights) bounds its error relative to the load
+        f = grid.scale / load
+
+        def matvec(z):
+            out = np.empty(na + 1)
+            out[:na] = product(z[:na])
+            out[:na] += z[na]
+            out[na] = f * z[:na].sum() / per
+            return out
+
+        def precond(r):
+            # block elimination of s with P = R C^+ R^T in place of C_AA^-1
+            u = pinv(r[:na])
+            t = (u.sum() / per - r[na] / f) / beta
+            out = np.empty(na + 1)
+            out[:na] = u - t * q
+            out[na] = t
+            return out
+
+        b = np.append(grid.y[idx], f * load)
+    else:
+        matvec = product
+        precond = pinv
+        b = grid.y[idx] - sep
+    # tol bounds every entry of the residual: gaps (k v) on A and the load equation
+    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.scale, restart, max_inner)
+    sigma = np.zeros(n)
+    sigma[idx] = z[:na]
+    s = z[na] if load is not None else sep
+    return sigma, s, its, relres, ok, held[0]
+
+
+def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
+    """Load control with most panels in contact: the displacements u_F of the free panels.
+
+    With u = y on the contact and u_F on the free set, sigma = C^+ u + load (C^+ maps onto
+    zero-mean pressures, so the mean is the load) and the free panels carry no pressure:
+    (C^+ u)_F = -load, a system of the size of the free set, preconditioned by R_F C R_F^T.
+    The displacement is u less its mean, so the mean separation is s = mean(u) (the gap is then
+    zero on the contact exactly).  The Krylov tolerance bounds the pressure left on the free
+    panels, relative to the load (not below the rounding C^+ amplifies); it is set to zero there
+    afterwards.
+    Returns (sigma_full, s, iterations, residual over h k (scaled like the primal), ok).
+    """
+    op = grid.op
+    m = free.size
+    base = grid.y.copy()
+    base[free] = 0.0
+    g = op.pseudo_solve(base)[free]
+    del base
+
+    def matvec(z):
+        return op.apply_on(free, z, inverse=True)
+
+    def precond(r):
+        return op.apply_on(free, r)
+
+    b = -load - g
+    # C^+ amplifies the rounding of u by up to max|1/symbol|: below that the residual cannot go
+    floor = _dual_floor(grid)
+    atol = max(tol * load, floor) * math.sqrt(m)
+    z, its, res, ok = gmres(matvec, precond, b, x0, atol, restart, max_inner)
+    u = grid.y.copy()
+    u[free] = z
+    del z
+    sigma = op.pseudo_solve(u)
+    sigma += load
+    sigma[free] = 0.0
+    s = float(u.mean())
+    return sigma, s, its, res / load * grid.amp, ok, None
+
+
+def _dual_floor(grid: _Grid):
+    """The pressure error (units of the pressure) below which the free-panel step cannot go:
+    C^+ amplifies the rounding of u by up to max|1/symbol|."""
+    return 16.0 * np.finfo(float).eps * grid.op.max_inverse * grid.amp
+
+
+def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
+                max_inner, cold=False, widen=True):
+    """Primal-dual active-set iteration on one grid.  ``cold``: the start is far from the
+    answer (no coarser grid gave it): the Krylov solves stop at COLD_KRYLOV_TOL and retreats are
+    sped up (`_speed_up_retreat`) until the active set settles; then every step is solved to
+    tol, and only such steps decide convergence.  ``widen``: a stagnated Krylov solve is tried
+    once more with a wider restart (`_with_retry`)."""
+    n = grid.n
+    seen = {}
+    inner = []
+    status, message = OUTER_EXHAUSTED, "outer iterations exhausted"
+    relres = 0.0
+    sigma = sigma0  # the caller's start, not used after
+    s = s0
+    gap = None  # of the current sigma, once solved for
+    new = np.empty(n, dtype=np.bool_)
+    roundoff = ACTIVE_SET_ROUNDOFF
+    # the free-panel step on a large grid, unless its rounding floor is a visible part of the
+    # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
+    dual = (load is not None and n >= DUAL_MIN_NODES and not grid.window
+            and _dual_floor(grid) <= DUAL_MAX_FLOOR * load)
+    loose = cold and COLD_KRYLOV_TOL > tol
+    for it in range(1, max_outer + 1):
+        step_tol = COLD_KRYLOV_TOL if loose else tol
+        if not active.any():
+            active = grid.y >= grid.y.max()  # at least the highest point touches
+        if active.all() and load is None and sep != 0.0:
+            active = grid.y > sep  # full contact needs s = 0; restart from the overlap
+        if active.all() and grid.window:
+            status, message = WINDOW_FAILED, "the contact fills its window"
+            break
+        if active.all():
+            # full contact: C sigma = y - s on every panel; mean(C sigma) = 0 gives s
+            s = float(grid.y.mean()) if load is not None else 0.0
+            sigma = grid.op.pseudo_solve(grid.y) + (load if load is not None else 0.0)
+            inner.append(0)
+            relres = 0.0
+            ok = True
+            product = None
+        elif dual and 2 * int(np.count_nonzero(active)) > n:
+            # most panels in contact on a large grid: solve for the displacements of the few
+            # free panels instead (memory and work scale with the free set, not the contact)
+            free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
+            if gap is None:
+                gap = grid.op.apply(sigma) - grid.y + s
+            x0 = gap[free] + grid.y[free]
+            gap = None  # memory
+            sigma, s, its, relres, ok, product = _with_retry(
+                lambda r: _dual_solve(grid, free, load, x0, step_tol, r, max_inner), restart,
+                free.size, widen)
+            inner.append(its)
+        else:
+            idx = np.flatnonzero(active).astype(np.int32)  # N < 2^31; memory
+            x0 = sigma[idx]
+            if load is not None:
+                x0 = np.append(x0, s)
+            gap = None  # memory
+            sigma, s, its, relres, ok, product = _with_retry(
+                lambda r: _linear_solve(grid, idx, load, sep, x0, step_tol, r, max_inner), restart,
+                idx.size, widen)
+            inner.append(its)
+        if product is None:
+            gap = grid.op.apply(sigma) - grid.y + s
+        else:  # C sigma from the Krylov solve's last product: the same numbers
+            gap = product
+            gap -= grid.y
+            gap += s
+            del product
+        if not ok:
+            status = KRYLOV_FAILED
+            message = (f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
+                       + (f" = {relres / grid.scale:.3e} of the window's drop)"
+                          if grid.window else ")"))
+            break
+        key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
+        if loose and (key is None or key in seen):
+            # the inexact steps have settled (or cycle): from here every step is solved to tol
+            loose = False
+            seen.clear()
+            if key is None:
+                continue
+        if loose and key is not None and _speed_up_retreat(active, new):
+            key = np.packbits(new).tobytes()
+        if dual and key is not None and (key in seen or it >= DUAL_MAX_STEPS):
+            # the free-panel steps do not settle: their pressures carry the rounding that C^+
+            # amplifies, and near full contact (gaps of 1e-6 h) edge panels whose pressure is
+            # below that flip back and forth; the primal step decides them from here on
+            dual = False
+            seen.clear()
+        if key in seen and roundoff < CYCLE_ROUNDOFF:
+            # the sets repeat: the panels that flip may all sit within the validity gate's
+            # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
+            # them with that allowance from here on (a second cycle is final)
+            roundoff = CYCLE_ROUNDOFF
+            seen.clear()
+            key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
+        if key is None:
+            status, message = CONVERGED, ("converged" if roundoff < CYCLE_ROUNDOFF else
+                                  "converged (at the validity gate's round-off, after a cycle)")
+            if grid.window and (active[0] or active[-1]):
+                status, message = WINDOW_FAILED, "the contact reaches an end of its window"
+            break
+        if key in seen:
+            status, message = CYCLED, f"active set cycles (outer step {it} repeats step {seen[key]})"
+            break
+        seen[key] = it
+        active = new.copy()
+    if gap is None:  # stopped before a solve (a window that its contact fills)
+        gap = np.zeros(n)
+    return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
+            "inner": inner, "relres": relres, "status": status, "message": message}
+
+
+def _speed_up_retreat(active, new):
+    """In a cold start's inexact steps: each end of a run of contact panels that the rule
+    (`new`) retreats by m >= 2 panels retreats by RETREAT_FACTOR m more, keeping at least half
+    of the panels the rule keeps in the run (panels that leave inside a run, and runs that grow,
+    are left alone).  The steps that follow, solved to tol, correct any overshoot.  Returns
+    whether `new` changed."""
+    n = active.size
+    if active.all() or not active.any():
+        return False
+    changed = False
+    for first, length in _runs(active):
+        ids = (first + np.arange(length)) % n
+        keep = np.flatnonzero(new[ids])
+        if keep.size == 0:
+            continue
+        lo, hi = int(keep[0]), int(keep[-1])  # panels lo .. hi of the run stay at its ends
+        more = [int(RETREAT_FACTOR * m) if m >= 2 else 0 for m in (lo, length - 1 - hi)]
+        cap = (hi - lo + 1) // 2
+        if sum(more) > cap:
+            more = [m * cap // sum(more) for m in more]
+        if more[0] or more[1]:
+            new[ids[lo:lo + more[0]]] = False
+            new[ids[hi + 1 - more[1]:hi + 1]] = False
+            changed = True
+    return changed
+
+
+def _next_active_set(active, sigma, gap, new, roundoff, amp):
+    """The active-set rule into `new`, with allowances of `roundoff` times max σ and h (well
+    inside the validity gate's 1e-12 of each); None when nothing changes, else a key of the
+    new set."""
+    changed = _kernels.update_active_set(active, sigma, gap, new,
+                                         roundoff * float(np.max(sigma)), roundoff * amp)
+    return None if changed == 0 else np.packbits(new).tobytes()
+
+
+def _with_retry(solve, restart, size, widen=True):
+    """``solve(restart)``, and once more with _retry_restart's wider restart if it did not
+    converge: restarted GMRES can stagnate where the operator is far from normal (a stiff
+    material, loss tangent ~ 10, near its memory length).  ``size``: the Krylov vectors'.
+    GMRES updates its start in place, so the second try starts from the first one's iterate
+    (whose residual is no larger than the start's)."""
+    sigma, s, its, relres, ok, product = solve(restart)
+    wide = _retry_restart(restart, size)
+    if not ok and widen and wide > restart:
+        del product  # memory
+        sigma, s, more, relres, ok, product = solve(wide)
+        its += more
+    return sigma, s, its, relres, ok, product
+
+
+def _retry_restart(restart, size):
+    """The restart length of the second try of a stagnated Krylov solve: KRYLOV_RETRY_RESTART,
+    or less where its basis (restart + 1 vectors of `size`) would pass KRYLOV_RETRY_BYTES."""
+    fit = KRYLOV_RETRY_BYTES // (8 * max(size, 1)) - 1
+    return max(restart, min(KRYLOV_RETRY_RESTART, fit))
+
+
+def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
+    """Active set, pressure and separation on a finer grid from a solved coarser one."""
+    x, xc = grid.x, prev_grid.x  # made once here (the grids do not keep them)
+    if prev["active"].all():
+        active = np.ones(grid.n, dtype=np.bool_)
+    else:
+        active = np.zeros(grid.n, dtype=np.bool_)
+        patches = prev.get("patches")  # measured by _level_scalars when the grid converged
+        if patches is None:
+            patches = _patches(prev["sigma"], prev["gap"], prev["active"], xc, prev_grid.h)
+        for p in patches:
+            xr = (x - p.trailing_edge) % 1.0
+            active |= xr < (p.leading_edge - p.trailing_edge)
+    if prev_grid.window:
+        xp, sp = xc, prev["sigma"]  # zero at both ends: np.interp holds it beyond
+    else:
+        xp = np.concatenate((xc - 1.0, xc, xc + 1.0))
+        sp = np.tile(prev["sigma"], 3)
+    del xc
+    sigma = np.interp(x, xp, sp) * active
+    return active, sigma, prev["s"] + (prev_grid.s_offset - grid.s_offset)
+
+
+def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None,
+               widen=True):
+    """Solve one grid, started from the finest coarser grid (``start``: a list holding it or
+    None, emptied here), or else from the elastic contact of ``elastic = (profile, an
+    elastic Prony)`` on the same grid, or else from scratch."""
+    best = start.pop() if start else None
+    n = grid.n
+    full = None
+    # no coarser grid of the sequence gives the start: the active set has far to go
+    cold = best is None and n > START_NODES
+    if grid.window:  # started from a coarser grid always
+        active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
+                           max_inner)
+    if sep == 0.0:
+        # Delta = h: full contact, whose load is not unique; return the smallest
+        # one (the full-contact threshold, the limit of Delta -> h from below)
+        sig = grid.op.pseudo_solve(grid.y)
+        full = sig - float(sig.min())
+    elif load is not None:
+        sig = grid.op.pseudo_solve(grid.y) + load
+        if sig.min() >= 0.0:  # full contact: no active-set iteration needed
+            full = sig
+    if full is not None:
+        s = float(grid.y.mean())
+        return {"sigma": full, "s": s, "active": np.ones(n, np.bool_),
+                "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
+                "relres": 0.0, "status": CONVERGED, "message": "converged"}
+    if best is None and elastic is not None:
+        # no coarser grid: start from the elastic contact on this grid (a symmetric
+        # positive-definite problem, on which the active-set method converges from anywhere)
+        eg = _Grid(elastic[0], elastic[1], 0.0, n)
+        er = _solve_one(eg, load, sep, [None], tol, max(max_outer, 50), restart, max_inner)
+        if er["status"] == CONVERGED:
+            best = (er, eg)
+    if best is None:
+        if load is not None:
+            sig = grid.op.pseudo_solve(grid.y) + load
+            active = sig > 0.0
+            sigma0 = np.where(active, sig, 0.0)
+        else:
+            active = grid.y > sep  # the rigid overlap
+            sigma0 = np.zeros(n)
+        s0 = 0.0 if sep is None else sep
+    else:
+        active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        best = None
+        if sep is not None:
+            s0 = sep
+    return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart, max_inner,
+                       cold, widen)
+
