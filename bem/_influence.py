@@ -431,21 +431,8 @@ def shifted_memory_coefficients(nodes: int, length: float, delta: float,
                 else window_memory_coefficients(nodes, length, *span))
     if delta <= 0.0:
         return base
-    if span is None:
-        offsets = _signed_offsets(nodes)
-    else:
-        offsets = np.arange(span[0], span[0] + span[1])
     a = delta / length
-    x0 = offsets / nodes - delta
-    g, gw = _leggauss(16)
-    t = 0.5 * (g + 1.0)
-    w = 0.5 * gw * np.exp(-a * t)
-    acc = np.zeros(base.size)
-    vals = np.empty(base.size)
-    for tq, wq in zip(t, w):
-        _kernels.panel_values(x0 + delta * tq, nodes, vals)
-        acc += wq * vals
-    return math.exp(-a) * base + a * acc
+    return math.exp(-a) * base + a * _shifted_integral(nodes, delta, span, _joint_weights(a))
 
 
 def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], ...],
@@ -488,6 +475,11 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
     h = 1.0 / nodes
     lengths = [speed * tau_i / (2.0 * np.pi) for _, tau_i in terms]
     shifts = collocation_shifts(h, j_plus, terms, lengths)
+    # several shifted terms share one shift (collocation_shifts): their second integrals take
+    # c at the same points, so they are summed with the terms' weights combined (one set of
+    # kernel values per grid, not one per term)
+    joint = sum(1 for (j_i, _), d in zip(terms, shifts) if j_i != 0.0 and d > 0.0) > 1
+    weights = None  # of the joint second integral, at its 16 points
     sources = None  # made at the first memory term, shared by the others
     for i, ((j_i, _), length) in enumerate(zip(terms, lengths)):
         if j_i == 0.0:
@@ -503,6 +495,36 @@ def influence_coefficients_nd(j_plus: float, terms: tuple[tuple[float, float], .
                      else window_memory_coefficients(nodes, length, *span, sources))
         if parts is not None:
             parts[length] = unshifted
-        total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span,
-                                                          unshifted)
+        if joint and delta > 0.0:
+            a = delta / length
+            total = total + (j_i * math.exp(-a)) * unshifted
+            w = _joint_weights(a)
+            weights = j_i * a * w if weights is None else weights + j_i * a * w
+        else:
+            total = total + j_i * shifted_memory_coefficients(nodes, length, delta, span,
+                                                              unshifted)
+    if weights is not None:
+        total = total + _shifted_integral(nodes, max(shifts), span, weights)
     return total
+
+
+def _joint_weights(a: float) -> np.ndarray:
+    """Weights of ``int_0^1 exp(-a t) f(t) dt`` at the 16 Gauss-Legendre points on [0, 1]
+    (those of :func:`shifted_memory_coefficients`)."""
+    g, gw = _leggauss(16)
+    t = 0.5 * (g + 1.0)
+    return 0.5 * gw * np.exp(-a * t)
+
+
+def _shifted_integral(nodes: int, delta: float, span, weights) -> np.ndarray:
+    """``sum_q weights_q c(X_m - delta + delta t_q)`` over the offsets (all, or ``span``'s):
+    the second integral of :func:`shifted_memory_coefficients`, for given weights."""
+    offsets = _signed_offsets(nodes) if span is None else np.arange(span[0], span[0] + span[1])
+    x0 = offsets / nodes - delta
+    g, _ = _leggauss(16)
+    acc = np.zeros(offsets.size)
+    vals = np.empty(offsets.size)
+    for tq, wq in zip(0.5 * (g + 1.0), weights):
+        _kernels.panel_values(x0 + delta * tq, nodes, vals)
+        acc += wq * vals
+    return acc

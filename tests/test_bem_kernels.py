@@ -138,6 +138,32 @@ def test_memory_sources_of_a_window_are_the_grid_ones():
     assert np.max(np.abs(win - full[offsets % nodes])) <= 1e-15 * np.abs(full).max()
 
 
+def test_terms_sharing_one_shift_are_summed_as_each_alone():
+    """Shifted terms share their second integral's kernel values (one set per grid): the
+    operator equals the sum of each term's own shifted coefficients, periodic and windowed.
+    A 52-term stiff spectrum at a speed where 52 terms take the joint shift."""
+    from comparisons._bench_materials import sample
+    import bem
+    from bem import _influence as inf
+    p = sample(4, 20261125)[3]
+    mat = bem.Prony(p["J0"], p["J"], p["tau"])
+    nodes, speed = 4096, p["speed"] * 32  # memories over panels as at 2^17 at its own speed
+    lengths = [speed * t / (2 * math.pi) for t in mat.tau]
+    shifts = inf.collocation_shifts(1 / nodes, mat.j_plus, mat.terms, lengths)
+    assert sum(d > 0 for d in shifts) > 40
+    for span in (None, (-700, 1500)):
+        got = inf.influence_coefficients_nd(mat.j_plus, mat.terms, speed, nodes, span)
+        if span is None:
+            want = mat.j_plus * inf.elastic_coefficients(nodes)
+        else:
+            want = np.empty(span[1])
+            _kernels.panel_values(np.arange(span[0], span[0] + span[1]) / nodes, nodes, want)
+            want = mat.j_plus * want
+        for (j, _), ln, d in zip(mat.terms, lengths, shifts):
+            want = want + j * inf.shifted_memory_coefficients(nodes, ln, d, span)
+        assert np.max(np.abs(got - want)) <= 1e-14 * np.abs(want).max(), span
+
+
 def test_memory_coefficients_tend_to_relaxed_and_to_zero():
     nodes = 64
     base = np.empty(nodes)
