@@ -48,17 +48,20 @@ On the user's grid x_j (spacing 1/M), every mean the grid's own quadrature
 - s/h = mean gap_j when the gap is given, else the mean over the contact points of
   y/h − v_j (in contact gap = v − y + s = 0); Δ/h = 1 − s/h;
 - contact points: σ_j > 1e-9 max σ; patches are the cyclic runs of contact points;
-- each edge: as the BEM finds its own (``bem._assemble.edge_offset``, so that viscosine's BEM
-  fields give back its own scalars): σ² at the contact points and, when the gap is given,
-  gap^(2/3) at the free points are analytic with a simple zero at the edge (σ ∝ d^½ and
+- each edge (`edge_offset`, verify's own fit): σ² at the contact points and, when the gap is
+  given, gap^(2/3) at the free points are analytic with a simple zero at the edge (σ ∝ d^½ and
   gap ∝ d^(3/2)); each side is fitted by a cubic plus a discretisation tail b h/d over the points
-  ~√M/16 … ~√M/4 from the edge, and counts only if its zero moves by at most 2e-3 h when the
-  window grows to ~√M/2 (a side cut short by the next edge: over the first half of its points,
-  checked against all of them; too short for that, it does not count); the zeros that count
-  are averaged; without any, the zeros of plain
-  cubics over ~√M/16 … ~√M/2 (fewer points on short sides; with too few, σ² extrapolated
-  linearly from the last two contact points).  On a non-uniform grid the fit runs on the cells
-  of the edge's own width (1/M read as that width), up to the first cell of another width;
+  ~√M/16 … ~√M/4 from the edge and again over ~√M/16 … ~√M/2 (a side cut short by the next
+  edge: over the first half of its points, then all of them; too short for that, it has no
+  such fit).  The sides whose zero moves by at most 2e-3 h between the two windows give the
+  edge, their first zeros averaged (viscosine's BEM places its own edges so: its fields give
+  back its edges).  Without such a side, the zeros of plain cubics over ~√M/16 … ~√M/2 are
+  averaged over the sides whose two zeros agree to 0.1 h (a side that moves more has another
+  scale next to the edge, such as a relaxation layer, which bends a plain fit by up to half a
+  spacing), else over every side (fewer points on short sides; with no zero at all, σ²
+  extrapolated linearly from the last two contact points).  On a non-uniform grid the fit runs
+  on the cells of the edge's own width (1/M read as that width), up to the first cell of
+  another width;
 - per patch: ka = π·width, ke = 2π(centre − summit), kê = 2π(centroid − summit) with the centroid
   Σw_jσ_j x_j/Σw_jσ_j over the patch (w_j the cell widths) and the summit the highest profile
   point inside it (the crest 0 for the sinusoid); with several patches the top-level ka, ke, kê
@@ -82,8 +85,13 @@ of every scalar and of the edges, as asked.  Field norms: FIELD_LAW (a square-ro
 keeps a correct solver's σ L∞ ~ (N·2a/λ)^(-1/2) and its σ L2 ~ N^(-1) at any practical N; 3 ×
 the worst constant measured on viscosine's own BEM).  ``--tol NAME=VALUE`` sets any one.  The
 verdict states each tolerance and why, one line each.  A quantity passes when its difference is
-at most its tolerance.  The verdict also names common slips the inputs look like (`diagnose`: a mirrored
-sign or x, SI values without ``--units SI``, fields one panel off their x).  The reference is
+at most its tolerance plus its floor, each floor stated too: on a known grid, 0.1 of a spacing per
+contact edge for ka, ke, 2a/λ and the edges (POSITION_PANELS: a correct solver's edges err by up
+to ~0.05 of a spacing with where each falls in its cell, which e_N of one solver does not
+sample), and for a scalar derived from fields, at least what the same derivation gives on the
+reference's own fields sampled on the same grid (`derivation_floor`).  The verdict also names
+common slips the inputs look like (`diagnose`: a mirrored sign or x, SI values without
+``--units SI``, fields one panel off their x).  The reference is
 the semi-analytic road where it applies (sinusoid on the standard linear solid), else the BEM
 (the suite's certified values for ``--case``, else a convergence study as the suite's; its
 fields on the user's grid at N = M·2^k ≥ 2^16); the report says which, and the reference's own
@@ -124,7 +132,6 @@ from pathlib import Path
 
 import numpy as np
 
-from bem._assemble import edge_offset as _edge_offset
 from viscosine import Fields
 from viscosine._fields import UNIFORM_SPACING, WIDTH
 
@@ -151,6 +158,17 @@ GRID_FACTOR = 3.0
 #: which its grid's error is then far below on the suite (μ of sls-ratio1000-full, its worst:
 #: 3.7e-4 at N = 4096, 6e-9 at 16384)
 GRID_MAX_NODES = 1 << 18
+#: On a grid of N points no position is judged finer than this fraction of a spacing per contact
+#: edge (`position_floor`, added to the tolerance like the derivation floor): a correct solver's
+#: edges err by a few hundredths of a spacing, varying with where each edge falls in its cell, and
+#: an edge read from fields cannot know how the solver discretised next to it; e_N samples one
+#: solver at one such place.  Measured over the suite's 13 partial-contact SLS cases at N = 512 …
+#: 4096 on viscosine's BEM and the Fourier collocation (analytic.fourier_solve, shifts=1), their
+#: own ka, ke, 2a/λ and those derived from their fields, each over the spacing it implies per
+#: edge: at most 0.047 (an edge from the Fourier fields, sls-hk0.05, N = 512; its own ka at
+#: sls-light-v1 0.040, the BEM's 0.037).  A tenth is twice that, and a tenth of the one-panel
+#: shift that must fail
+POSITION_PANELS = 0.1
 DEFAULT_NODES = (1024, 2048, 4096, 8192)
 #: the default ladder of ``--peer tamaas`` (grid nodes; each is a dt study, see DEFAULT_DT_CELLS):
 #: Tamaas's time grows about 4.3 times per doubling of N (N steps of N log N), so the ladder stops
@@ -464,6 +482,142 @@ def _same_width(idx, w, h):
     return idx if same.all() else idx[:int(np.argmin(same))]
 
 
+# The contact edges: verify's own fit (no solver's code), the model in the module docstring.
+# Near an edge σ ∝ d^½ and gap ∝ d^(3/2) with analytic corrections, so σ² (inside) and
+# gap^(2/3) (outside) are analytic with a simple zero at the edge; a grid adds a tail that decays
+# away from it (~h/d for a panel solver), which a plain polynomial mistakes for a shift.
+#: degree of the polynomial part of every edge fit
+EDGE_DEGREE = 3
+#: passes of the fixed point in the tail's distances (measured to contract by 0.1-0.3 a pass);
+#: a side that has not settled to 1e-10 h after them gives no zero
+EDGE_PASSES = 40
+#: a side whose zero moves by at most this many spacings between its two windows holds the model
+#: to the fit's resolution (~1e-4 h on exact samples; viscosine's BEM's edge fit uses the same
+#: bound, so its fields give back its own edges)
+EDGE_STILL = 2e-3
+#: with no side that still, a side counts in the plain fits only if both its windows place a
+#: zero and the zeros agree to this many spacings (the resolution POSITION_PANELS claims): a side
+#: that fails it has another scale in its window (a relaxation layer next to the edge), which
+#: bends a plain fit by up to half a spacing (measured: the leading edge from the Fourier
+#: collocation's fields at sls-partial-v0.1, N = 1024, 0.54 h with the pressure's side, 0.003 h
+#: without it; on exact samples and viscosine's BEM's fields of the 13 partial-contact SLS suite
+#: cases at N = 512 … 4096 no edge gets worse by more than 0.002 h for it)
+EDGE_HOLDS = 0.1
+
+
+def _edge_windows(m):
+    """(first, narrow last, plain last) point indices of the edge fits on a grid of m points."""
+    first = max(1, int(round(math.sqrt(m) / 16.0)))
+    return (first, max(first + EDGE_DEGREE + 4, int(round(math.sqrt(m) / 4.0))),
+            max(first + 6, int(round(math.sqrt(m) / 2.0))))
+
+
+def _nearest_real_root(coef, near):
+    """The real root of the polynomial Σ coef_k t^k nearest ``near`` (None without one)."""
+    roots = np.polynomial.polynomial.polyroots(coef)
+    real = roots.real[np.abs(roots.imag) < 1e-9]
+    return float(real[np.argmin(np.abs(real - near))]) if real.size else None
+
+
+def _plain_roots(sides, h, m):
+    """The plain fit's root of each side (None where it has none in [−h, 2h]): the
+    least-squares cubic over the points ~√m/16 … ~√m/2 from the edge (from the edge point on,
+    quadratic, where fewer remain), its root nearest the edge."""
+    first, _, last = _edge_windows(m)
+    roots = []
+    for vals, sign, shift in sides:
+        top = min(last, vals.size - 1)
+        lo = first if top - first >= 5 else 0
+        root = None
+        if top - lo >= 3:
+            k = np.arange(lo, top + 1)
+            pos = sign * (k + shift) * h
+            scale = float(np.max(np.abs(pos)))
+            coef = np.polynomial.polynomial.polyfit(pos / scale, vals[k],
+                                                    3 if top - lo >= 5 else 2)
+            root = _nearest_real_root(coef, 0.0)
+            root = root * scale if root is not None and -h <= root * scale <= 2.0 * h else None
+        roots.append(root)
+    return roots
+
+
+def _tail_zero(vals, sign, shift, lo, hi, start, h):
+    """The zero near ``start`` of the least-squares cubic + b h/|d| through vals[k] at the
+    offsets sign (k + shift) h, k = lo … hi (d = offset − zero, the zero iterated to a fixed
+    point); None with too few points, a zero outside [−h/2, 3h/2] or no fixed point."""
+    hi = min(hi, vals.size - 1)
+    if hi - lo < EDGE_DEGREE + 4:
+        return None
+    k = np.arange(lo, hi + 1)
+    pos = sign * (k + shift) * h
+    scale = hi * h
+    poly = np.vander(pos / scale, EDGE_DEGREE + 1, increasing=True)
+    zero = start
+    for _ in range(EDGE_PASSES):
+        design = np.column_stack((poly, h / np.abs(pos - zero)))
+        coef = np.linalg.lstsq(design, vals[k], rcond=None)[0]
+        root = _nearest_real_root(coef[:-1], zero / scale)
+        if root is None or not -0.5 * h <= root * scale <= 1.5 * h:
+            return None
+        moved, zero = abs(root * scale - zero), root * scale
+        if moved <= 1e-10 * h:
+            return zero
+    return None
+
+
+def edge_offset(inside_sq, outside_23, h, m):
+    """How far a contact edge lies beyond the last contact point (x/λ, toward the free side).
+
+    Parameters
+    ----------
+    inside_sq : ndarray
+        σ² at the contact points counted inward from the edge (index 0 the last contact point,
+        at offset 0; index k at −k h).
+    outside_23 : ndarray
+        gap^(2/3) at the free points counted outward (index k at offset (k + 1) h); may be empty.
+    h : float
+        The spacing (x/λ).
+    m : int
+        Points per period (the fit windows grow like √m).
+
+    Returns
+    -------
+    float
+        The offset, in [−h/2, 3h/2].  Each side is fitted by a cubic plus a tail b h/d over the
+        points ~√m/16 … ~√m/4 from the edge (its narrow window; a side cut short by the next
+        edge: the first half of its points) and over twice as many (its wide window).  The
+        narrow zeros of the sides whose two zeros agree to EDGE_STILL h are averaged.  Else
+        the plain fits (`_plain_roots`) of the sides whose two zeros agree to EDGE_HOLDS h are
+        averaged; with none (or no root), those of every side; with none of them either, σ²
+        extrapolated linearly from the last two contact points (at most h), else h/2.  A mean
+        of plain roots is clipped to [−h/2, 3h/2].
+    """
+    sides = ((inside_sq, -1.0, 0.0), (outside_23, 1.0, 1.0))
+    plain = _plain_roots(sides, h, m)
+    found = [r for r in plain if r is not None]
+    if found:
+        start = min(max(sum(found) / len(found), -0.5 * h), 1.5 * h)
+    elif inside_sq.size >= 2 and inside_sq[1] > inside_sq[0]:
+        start = min(h, h * inside_sq[0] / (inside_sq[1] - inside_sq[0]))
+    else:
+        start = 0.5 * h
+    first, narrow, _ = _edge_windows(m)
+    moves = []  # per side: (how far its zero moves between the windows, its narrow zero)
+    for vals, sign, shift in sides:
+        top = min(narrow, (vals.size - 1) // 2)
+        near = _tail_zero(vals, sign, shift, first, top, start, h)
+        wide = _tail_zero(vals, sign, shift, first, 2 * top, start, h)
+        moves.append((math.inf, None) if near is None or wide is None else
+                     (abs(near - wide), near))
+    still = [z for d, z in moves if d <= EDGE_STILL * h]
+    if still:
+        return sum(still) / len(still)
+    held = [r for r, (d, _) in zip(plain, moves) if r is not None and d <= EDGE_HOLDS * h]
+    if held:
+        return min(max(sum(held) / len(held), -0.5 * h), 1.5 * h)
+    return start
+
+
 def scalars_from_fields(fields, shape):
     """Scalars and contact patches computed from fields over one period.
 
@@ -570,8 +724,8 @@ def scalars_from_fields(fields, shape):
             xs = x_first + np.mod(x[ids] - x_first, 1.0)
             x_last = float(xs[-1])
             w = p[ids] * w_cells[ids] * m  # the pressures weighed by their cells (over 1/M)
-        lead = x_last + _edge_offset(ins_lead, out_lead, h_lead, m_lead)
-        trail = x_first - _edge_offset(ins_trail, out_trail, h_trail, m_trail)
+        lead = x_last + edge_offset(ins_lead, out_lead, h_lead, m_lead)
+        trail = x_first - edge_offset(ins_trail, out_trail, h_trail, m_trail)
         centroid = float(np.dot(w, xs) / w.sum()) if w.sum() > 0 else 0.5 * (trail + lead)
         summit = shape.summit(trail, lead)
         shift = -math.floor(0.5 * (trail + lead) - summit + 0.5)
@@ -928,20 +1082,25 @@ def field_constants(point, nodes, case=None):
 
 @functools.lru_cache(maxsize=64)
 def _bem_derived(point_json, nodes, columns):
-    """(scalars, patches) derived from viscosine's BEM fields on ``nodes`` panels, keeping only
-    ``columns``, as from a user's (cached: a run asks for the same grid more than once); None
-    when the BEM cannot solve there."""
+    """(scalars, patches, own scalars): those derived from viscosine's BEM fields on ``nodes``
+    panels, keeping only ``columns``, as from a user's, and the BEM's own (cached: a run asks
+    for the same grid more than once); None when the BEM cannot solve there."""
     point = json.loads(point_json)
     if not MIN_POINTS <= nodes <= GRID_MAX_NODES:
         return None
     try:
         with warnings.catch_warnings():  # its coarse-grid caveats are about this very allowance
             warnings.simplefilter("ignore")
-            f = viscosine_bem(point, nodes)
+            res = _suite.bem_solution(point, int(nodes), base="/")
+            if not res.success:
+                return None
+            x, p, v, g = _suite.bem_fields(res)
     except (RuntimeError, ValueError, ArithmeticError):
         return None
+    f = {"x_over_lambda": x, "pressure": p, "displacement": v, "gap": g}
     f = {k: f[k] for k in ("x_over_lambda",) + columns}
-    return scalars_from_fields(f, _suite.ProfileShape(point, base="/"))
+    own = {k: v for k, v in res.scalars().items() if k in SCALAR_KEYS and v is not None}
+    return (*scalars_from_fields(f, _suite.ProfileShape(point, base="/")), own)
 
 
 def _bem_errors(reference, nodes, columns):
@@ -949,10 +1108,14 @@ def _bem_errors(reference, nodes, columns):
     got = _bem_derived(key, int(nodes), tuple(columns))
     if got is None:
         return {}
-    sc, patches = got
-    out = {k: _measure(k, sc.get(k), reference.scalars.get(k, (None, None))[0])
-           for k in SCALAR_KEYS}
-    out = {k: v for k, v in out.items() if v is not None}
+    sc, patches, own = got
+    out = {}
+    for k in SCALAR_KEYS:  # a correct solver's miss: the BEM's own or its fields', the larger
+        ref = reference.scalars.get(k, (None, None))[0]
+        got_k = [m for m in (_measure(k, sc.get(k), ref), _measure(k, own.get(k), ref))
+                 if m is not None]
+        if got_k:
+            out[k] = max(got_k)
     edges = _match(reference.patches, patches) if reference.patches else None
     if edges:
         out["edges"] = max(max(abs(a), abs(b)) for a, b in edges)
@@ -962,7 +1125,8 @@ def _bem_errors(reference, nodes, columns):
 def grid_errors(reference, nodes, columns=_suite.FIELD_COLUMNS):
     """e_N of every scalar and of the edges: what viscosine's BEM misses ``reference`` by on
     ``nodes`` panels, the larger of its error at N and half its error at N/2 (an error that
-    happens to cross zero at N does not shrink it).
+    happens to cross zero at N does not shrink it); for a scalar, the larger of the BEM's own
+    value's miss and that of the value derived from its fields.
 
     Each in the verdict's measure (`_measure`; edges: the worst, x/λ), with the scalars derived
     from the BEM's fields by `scalars_from_fields` keeping only ``columns``, as the verdict
@@ -996,7 +1160,7 @@ def _grid_tolerances(rtol, reference, nodes, columns):
                                        "grid (the larger of its error at N and half that at "
                                        "N/2), a correct solver's discretisation error here")
         else:
-            out[k] = (rtol, f"{law}: the floor binds, viscosine's BEM errs by e_N ≤ "
+            out[k] = (rtol, f"{law}: {rtol:.1e} binds, viscosine's BEM errs by e_N ≤ "
                             f"{max(floor):.1e} on this grid")
     return out
 
@@ -1064,6 +1228,50 @@ def derivation_floor(result: Result, reference: Reference):
     return out
 
 
+def _points(result, reference):
+    """N of a result: `grid_size` of its fields, else its ``nodes`` (None when not known)."""
+    return grid_size(result.fields, reference)[0] if result.fields is not None else result.nodes
+
+
+def position_floor(result: Result, reference: Reference):
+    """The grid's resolution of the positions: {key: floor in the verdict's measure}.
+
+    POSITION_PANELS of a spacing per contact edge on the result's grid (`grid_size` of its
+    fields, else its ``nodes``): the edges POSITION_PANELS/N (x/λ), ka and ke 2π POSITION_PANELS/N
+    (both edges off), 2a/λ 2 P POSITION_PANELS/N over the reference's 2a/λ (P patches).  Empty
+    when N is not known or the reference has no patches (full contact).
+    """
+    n = _points(result, reference)
+    if not n or not reference.patches:
+        return {}
+    d = POSITION_PANELS / n
+    out = {"edges": d}
+    c = reference.scalars.get("contact_fraction", (None, None))[0]
+    if c:
+        out["contact_fraction"] = 2.0 * len(reference.patches) * d / c
+    if len(reference.patches) == 1:
+        out["ka"] = out["ke"] = 2.0 * math.pi * d
+    return out
+
+
+def _floor_lines(rows, n):
+    """One line per kind of floor that some row shown carries: the position floor (its values)
+    and the derivation floor."""
+    lines = []
+    pos = [r for r in rows if r.get("floor_kind") == "position"]
+    if pos:
+        vals = ", ".join(f"{r['label']} {r['derivation_floor']:.1e}" for r in pos)
+        lines.append(f"{', '.join(r['label'] for r in pos)}: + {POSITION_PANELS:g} spacing per "
+                     f"edge on N = {n:.0f} ({vals}): a correct solver's edges err by up to ~0.05 "
+                     "spacing, with where each edge falls in its cell, which e_N (one solver) "
+                     "does not sample")
+    der = [r["label"] for r in rows if r.get("floor_kind") == "derivation"]
+    if der:
+        lines.append(f"{', '.join(der)}: + what the same derivation from fields errs by on the "
+                     "reference's own fields sampled on this grid (each in the report)")
+    return lines
+
+
 def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_given=None,
              si=False):
     """Verdicts of the finest result, and the convergence study of all of them.
@@ -1071,17 +1279,21 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
     A quantity passes when its difference from the reference is at most its tolerance
     (`tolerances`: for the scalars and the edges max(rtol, GRID_FACTOR · e_N) on the finest
     result's grid, or ``rtol`` when that grid is not known or ``rtol`` was asked for; the grid's
-    FIELD_LAW for the field norms; ``tol`` for any) plus, for a scalar derived from fields, the
-    derivation floor on the same grid (:func:`derivation_floor`).
+    FIELD_LAW for the field norms; ``tol`` for any) plus its floor: the larger of, for ka, ke,
+    2a/λ and the edges on a known grid, the grid's resolution of a position (`position_floor`)
+    and, for a quantity derived from fields, the derivation floor on the same grid
+    (:func:`derivation_floor`).
 
     Returns
     -------
     dict
         ``verdict`` ("PASS"/"FAIL"), ``quantities`` (rows: key, label, value, reference,
-        difference, measure, tolerance, tolerance_reason, derivation_floor,
+        difference, measure, tolerance, tolerance_reason, derivation_floor (the floor added,
+        whichever kind), floor_kind ("position", "derivation" or None without a floor),
         reference_uncertainty, solver_error (the solver's own estimate of its error, in the
         same measure, when it gave one), passed, note), ``tolerances`` (one line per
-        tolerance: the quantities, the value and why), ``edges``, ``failed`` (the labels of
+        tolerance: the quantities, the value and why), ``floors`` (one line per kind of floor
+        added, and why), ``edges``, ``failed`` (the labels of
         the failing quantities), ``nodes``, ``convergence`` (or None) and ``diagnosis``
         (common slips recognised in the inputs: `diagnose`; ``si``: the inputs were
         converted from SI units).
@@ -1089,7 +1301,11 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
     results = sorted(results, key=lambda r: (r.nodes is None, r.nodes or 0))
     best = results[-1]
     tols = tolerances(rtol, tol, best.fields, reference, rtol_given, nodes=best.nodes)
-    floor = derivation_floor(best, reference)
+    derived = derivation_floor(best, reference)
+    position = position_floor(best, reference)
+    floor = {k: (max(derived.get(k, 0.0), position.get(k, 0.0)),
+                 "position" if position.get(k, 0.0) > derived.get(k, 0.0) else "derivation")
+             for k in set(derived) | set(position)}
     errs = best.errors or {}
     rows = []
     for k in SCALAR_KEYS:
@@ -1103,7 +1319,7 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
         if own is not None and k in REL and ref:
             own = own / abs(ref)
         rows.append(_row(k, val, ref, d, "relative" if k in REL else "absolute (rad)",
-                         tols[k], unc_m, floor.get(k, 0.0), solver_error=own))
+                         tols[k], unc_m, *floor.get(k, (0.0, None)), solver_error=own))
     nm, nm_unc, _ = norms(best, reference)
     for k, v in nm.items():
         rows.append(_row(k, v, 0.0, v, "relative to max σ" if k.startswith("pressure")
@@ -1126,11 +1342,13 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
             else:
                 worst = max(max(abs(a), abs(b)) for a, b in edges)
                 rows.append(_row("edges", worst, 0.0, worst, "absolute (x/λ)", tols["edges"],
-                                 None, floor.get("edges", 0.0)))
+                                 None, *floor.get("edges", (0.0, None))))
     failed = [r["label"] for r in rows if not r["passed"]]
     shown = [r["key"] for r in rows]
     ev = {"verdict": "FAIL" if failed or not rows else "PASS", "quantities": rows,
-          "tolerances": _tolerance_lines(tols, shown), "edges": edges, "failed": failed,
+          "tolerances": _tolerance_lines(tols, shown),
+          "floors": _floor_lines(rows, _points(best, reference)), "edges": edges,
+          "failed": failed,
           "nodes": best.nodes,
           "convergence": convergence(results, reference) if len(results) > 1 else None}
     ev["diagnosis"] = diagnose(best, reference, ev, si=si)
@@ -1147,18 +1365,25 @@ def _tolerance_lines(tols, keys):
     return [f"{', '.join(labels)}: {v}, {why}" for (v, why), labels in groups.items()]
 
 
-def _row(key, value, ref, diff, measure, tol, ref_unc, floor, note="", solver_error=None):
+def _row(key, value, ref, diff, measure, tol, ref_unc, floor, floor_kind=None, note="",
+         solver_error=None):
+    """One verdict row.  ``floor``: added to the tolerance; ``floor_kind``: "position" (the
+    grid's resolution of a position, `position_floor`) or else the derivation floor."""
     tol, reason = tol
     floor = floor or 0.0
+    position = floor_kind == "position"
     ok_diff = diff is not None and math.isfinite(diff)
     passed = bool(ok_diff and diff <= tol + floor)
     if not note:
         if floor > 0.0 and ok_diff and tol < diff <= tol + floor:
-            note = (f"the grid limits this check: the difference is within what the same "
-                    f"derivation errs by on the reference's own fields on this grid ({floor:.1e})")
+            note = ("the grid limits this check: the difference is within "
+                    + (f"{POSITION_PANELS:g} of a spacing per edge ({floor:.1e})" if position else
+                       f"what the same derivation errs by on the reference's own fields on this "
+                       f"grid ({floor:.1e})"))
         elif floor > tol and ok_diff and diff > tol + floor:
-            note = (f"not explained by the grid: the derivation on this grid errs by only "
-                    f"{floor:.1e}")
+            note = ("not explained by the grid: " + (
+                f"it resolves a position to {floor:.1e}" if position else
+                f"the derivation on this grid errs by only {floor:.1e}"))
         elif ref_unc is not None and math.isfinite(ref_unc) and ref_unc > 0.1 * tol:
             note = "the reference's uncertainty exceeds a tenth of the tolerance"
         if solver_error is not None and solver_error > tol:
@@ -1166,7 +1391,8 @@ def _row(key, value, ref, diff, measure, tol, ref_unc, floor, note="", solver_er
                                                  f"{solver_error:.1e} exceeds the tolerance"]))
     return {"key": key, "label": LABELS[key], "value": value, "reference": ref,
             "difference": diff, "measure": measure, "tolerance": tol, "tolerance_reason": reason,
-            "derivation_floor": floor, "reference_uncertainty": ref_unc,
+            "derivation_floor": floor, "floor_kind": floor_kind if floor > 0.0 else None,
+            "reference_uncertainty": ref_unc,
             "solver_error": solver_error, "passed": passed, "note": note}
 
 
@@ -1443,16 +1669,20 @@ def markdown(ev, point, reference, results, label, figures, inputs, case=None):
             + ([_fmt(r.get("solver_error"), ".1e")] if own else [])
             + ["PASS" if r["passed"] else "FAIL", r["note"]] for r in ev["quantities"]]
     lines += [table(["quantity", "value", "reference", "difference", "measure", "tolerance",
-                     "derivation floor", "reference uncertainty"]
+                     "floor", "reference uncertainty"]
                     + (["solver's estimated error"] if own else []) + ["verdict", "note"], rows),
-              "A quantity passes when its difference is at most its tolerance plus its derivation "
-              "floor: what the same derivation of scalars from fields gives on the reference's own "
-              "fields sampled on the solver's grid (the rectangle rule on point samples of a field "
-              "with square-root edges errs by O(M^-1.5))."
+              "A quantity passes when its difference is at most its tolerance plus its floor: "
+              f"for ka, ke, 2a/λ and the edges on a known grid at least {POSITION_PANELS:g} of a "
+              "spacing per contact edge (the grid's resolution of a position), and for a scalar "
+              "derived from fields at least what the same derivation gives on the reference's "
+              "own fields sampled on the solver's grid (the rectangle rule on point samples of a "
+              "field with square-root edges errs by O(M^-1.5))."
               + (" The solver's estimated error is its own (here: the size of the next term of "
                  "its extrapolation to dt → 0); it is shown, not added to the tolerance."
                  if own else ""), ""]
     lines += ["### The tolerances, and why", ""] + [f"- {t}" for t in ev["tolerances"]] + [""]
+    if ev.get("floors"):
+        lines += ["Floors added to the tolerances:", ""] + [f"- {t}" for t in ev["floors"]] + [""]
     if ev.get("diagnosis"):
         lines += ["### Diagnosis", "", "Common slips the inputs look like:", ""] + [
             f"- {d}" for d in ev["diagnosis"]] + [""]
@@ -1502,16 +1732,18 @@ def markdown(ev, point, reference, results, label, figures, inputs, case=None):
 SCALARS_FROM_FIELDS = (
     "p̃∞ = mean σ over the grid; τ̃f = −(1/2π) mean σ (ky)′ (eq. 3.1 with ∂v/∂x = ∂y/∂x on the "
     "contact); μ = τ̃f/p̃∞; s/h = mean gap (or, without a gap column, the mean of y/h − v over "
-    "the contact points); Δ/h = 1 − s/h; contact points σ > 1e-9 max σ. Each edge as the BEM "
-    "finds its own (bem._assemble.edge_offset): σ² inside and gap^(2/3) outside have a simple "
-    "zero at the edge, and the point values also carry a discretisation tail that decays like "
-    "h/d away from it (h the spacing, d the distance to the edge), so each side is fitted by "
-    "least squares with a cubic plus b h/d over the points ~√M/16 … √M/4 from the edge (d "
-    "measured from the zero found so far, iterated); a side counts only if the same fit over "
-    "~√M/16 … √M/2 puts its zero within 2e-3 h of it (a side cut short by the next edge: its "
-    "first half, checked against all of it; shorter, it does not count); the zeros that count "
-    "are averaged, and with none, the zeros of plain cubics over ~√M/16 … √M/2 (σ² extrapolated "
-    "linearly from the last two contact points when even those are too few). ka = π·width, "
+    "the contact points); Δ/h = 1 − s/h; contact points σ > 1e-9 max σ. Each edge by verify's "
+    "own fit: σ² inside and gap^(2/3) outside have a simple zero at the edge, and the point "
+    "values also carry a discretisation tail that decays away from it (like h/d for a panel "
+    "solver, h the spacing, d the distance to the edge), so each side is fitted by least "
+    "squares with a cubic plus b h/d over the points ~√M/16 … √M/4 from the edge (d measured "
+    "from the zero found so far, iterated) and again over ~√M/16 … √M/2 (a side cut short by "
+    "the next edge: its first half, then all of it); the sides whose zero moves by at most "
+    "2e-3 h between the two give the edge (averaged; viscosine's BEM places its own edges so). "
+    "Without one, plain cubics over ~√M/16 … √M/2, averaged over the sides whose two zeros "
+    "agree to 0.1 h (a side that moves more has another scale next to the edge, such as a "
+    "relaxation layer), else over both (σ² extrapolated linearly from the last two contact "
+    "points when even those are too few). ka = π·width, "
     "ke = 2π(centre − summit), kê = 2π(centroid − summit); in full contact "
     "kê = arg(ŷ_n/σ̂_n)/n in the profile's dominant mode.")
 
@@ -1546,7 +1778,8 @@ def write_report(folder, ev, point, reference, results, label, inputs, case=None
            "case": case["name"] if case else None, "reference": {
                "road": reference.road, "description": reference.description},
            "nodes": ev["nodes"], "quantities": ev["quantities"],
-           "tolerances": ev["tolerances"], "diagnosis": ev["diagnosis"], "edges": ev["edges"],
+           "tolerances": ev["tolerances"], "floors": ev.get("floors", []),
+           "diagnosis": ev["diagnosis"], "edges": ev["edges"],
            "convergence": ev["convergence"], "inputs": inputs,
            "results": [{"nodes": r.nodes, "source": r.source, "scalars": r.scalars,
                         "estimated_errors": r.errors, "patches": r.patches} for r in results]}
@@ -1958,12 +2191,15 @@ def _main(args, _cli) -> int:
     for r in ev["quantities"]:
         own = ("" if r.get("solver_error") is None else
                f"; the solver's estimated error {r['solver_error']:.1e}")
+        floor = f" + floor {r['derivation_floor']:.1e}" if r.get("floor_kind") else ""
         print(f"{'PASS' if r['passed'] else 'FAIL'} {r['key']} ({r['label']}): "
               f"{_fmt(r['value'], '.10g')} vs {_fmt(r['reference'], '.10g')}, difference "
               f"{_fmt(r['difference'], '.2e')} ({r['measure']}), tolerance "
-              f"{r['tolerance']:.1e}{own}")
+              f"{r['tolerance']:.1e}{floor}{own}")
     for line in ev["tolerances"]:
         print(f"tolerance: {line}")
+    for line in ev.get("floors", []):
+        print(f"floor: {line}")
     conv = ev["convergence"]
     if conv:
         print("orders vs reference: " + ", ".join(

@@ -110,15 +110,19 @@ def _verdict(path):
 
 def _bem_misses(case, nodes):
     """What viscosine's BEM on ``nodes`` panels misses the case's reference by, per scalar (the
-    verdict's measure) and for the edges, its scalars derived from its fields: the grid law's
-    e_N, recomputed here from the public pieces."""
+    verdict's measure; the larger miss of its own value and of the value derived from its
+    fields) and for the edges (derived from its fields): the grid law's e_N, recomputed here
+    from the public pieces."""
     point, c = verify.point_from_case(case)
     ref = verify.reference_for(point, c)
     sc, patches = verify.scalars_from_fields(verify.viscosine_bem(point, nodes), ref.shape)
+    own = suite.bem_solution(point, nodes, base="/").scalars()
     out = {}
     for k, (value, _) in ref.scalars.items():
-        if sc.get(k) is not None:
-            out[k] = abs(sc[k] - value) / (abs(value) if k in verify.REL and value else 1.0)
+        scale = abs(value) if k in verify.REL and value else 1.0
+        misses = [abs(v[k] - value) / scale for v in (sc, own) if v.get(k) is not None]
+        if misses:
+            out[k] = max(misses)
     if ref.patches:
         out["edges"] = max(abs(p[e] - r[e]) for p, r in zip(patches, ref.patches)
                            for e in ("trailing_edge", "leading_edge"))
@@ -175,9 +179,10 @@ def test_defaults_pass_viscosine_bem_where_its_grid_error_exceeds_1e_4(tmp_path,
     for key, row in wide.items():
         assert row["tolerance"] >= 3 * row["difference"]
         assert "N = 512: e_N = " in row["tolerance_reason"]
+        # the line whose value is this tolerance (not one whose e_N prints the same)
         assert f"{verify.LABELS[key]}" in next(ln for ln in out.splitlines()
                                                if ln.startswith("tolerance: ")
-                                               and f"{row['tolerance']:.1e}" in ln)
+                                               and f": {row['tolerance']:.1e}, " in ln)
 
 
 FOURIER = """import numpy as np
@@ -195,17 +200,119 @@ def solve(point, nodes):
 """
 
 
-@pytest.mark.parametrize("case", [CASE, "sls-light-v1"])
-def test_defaults_pass_an_independent_solver(tmp_path, capsys, case):
+#: the suite's partial-contact cases on the standard linear solid (the semi-analytic reference)
+PARTIAL_SLS = [name for name in suite.case_names()
+               if suite.two_roads(suite.get_case(name)["point"])
+               and not suite.get_case(name)["certified"]["exact"]["full_contact"]]
+
+
+def _fourier_points():
+    """(case, N) with N = 512 and 1024 where the Fourier collocation resolves the material's
+    memory (it refuses the rest: sls-partial-v0.1 at 512, sls-ratio1000 below 4096), else the
+    first N ≤ 4096 that does."""
+    from analytic.fourier import memory_resolution
+    out = []
+    for name in PARTIAL_SLS:
+        p = suite.get_case(name)["point"]
+        ok = [n for n in (512, 1024, 2048, 4096)
+              if memory_resolution(p["speed"], n, ratio=p["ratio"])[1]]
+        out += [(name, n) for n in ok if n <= 1024] or [(name, ok[0])]
+    return out
+
+
+@pytest.mark.parametrize("case,nodes", _fourier_points())
+def test_defaults_pass_an_independent_solver(tmp_path, capsys, case, nodes):
     """The Fourier-collocation solver (analytic.fourier_solve: dense collocation on points,
-    no code shared with bem/), its fields on one grid of 512 points, passes by default."""
+    no code shared with bem/), its fields on one grid of N points, passes by default on every
+    partial-contact SLS case of the suite: its edges come from its fields (the pressure's side of
+    an edge with a relaxation layer next to it is left out of the plain fits: 0.54 spacing at
+    sls-partial-v0.1, N = 1024, before), and each position is allowed a tenth of a spacing per
+    edge (its own ka, ke, 2a/λ err by up to 0.04 of one at N = 512, where viscosine's BEM's
+    e_N sets 1e-4); the verdict says so."""
     (tmp_path / "fourier_solver.py").write_text(FOURIER, encoding="utf-8")
     rc, out, err = _run(capsys, "--case", case, "--callable",
-                        f"{tmp_path}/fourier_solver.py:solve", "--nodes", "512",
+                        f"{tmp_path}/fourier_solver.py:solve", "--nodes", str(nodes),
                         "--out", str(tmp_path / "rep"), "--no-figures")
     assert rc == 0, out + err
     doc = _verdict(tmp_path / "rep")
-    assert doc["nodes"] == 512 and len(doc["quantities"]) == 15
+    assert doc["nodes"] == nodes and len(doc["quantities"]) == 15
+    floors = [ln for ln in out.splitlines() if ln.startswith("floor: ")]
+    assert floors == [f"floor: {t}" for t in doc["floors"]]
+    assert floors[0].startswith(f"floor: 2a/λ, ka, ke, contact edges (x/λ): + 0.1 spacing per "
+                                f"edge on N = {nodes} (")
+
+
+def test_the_independent_solver_set_covers_the_partial_sls_cases():
+    assert len(PARTIAL_SLS) == 13 and {c for c, _ in _fourier_points()} == set(PARTIAL_SLS)
+
+
+def test_the_measured_position_resolution_holds():
+    """POSITION_PANELS is twice the worst measured (per edge, in spacings): an edge from the
+    Fourier collocation's fields at sls-hk0.05, N = 512 (0.047), the Fourier's own ka at
+    sls-light-v1, N = 512 (0.040) and viscosine's BEM's there (0.037); recomputed here."""
+    n = 512
+    point, case = verify.point_from_case("sls-hk0.05")
+    ref = verify.reference_for(point, case)
+    kw = {k: point[k] for k in ("load", "speed", "ratio", "hk")}
+    f = analytic.fourier_solve(nodes=n, shifts=1, **kw)
+    fields = {k: np.asarray(getattr(f, k)) for k in ("x_over_lambda", "pressure", "gap")}
+    edges = verify._match(ref.patches, verify.scalars_from_fields(fields, ref.shape)[1])
+    assert max(max(abs(a), abs(b)) for a, b in edges) * n == pytest.approx(0.047, abs=0.002)
+    point, case = verify.point_from_case("sls-light-v1")
+    ka = verify.reference_for(point, case).scalars["ka"][0]
+    kw = {k: point[k] for k in ("load", "speed", "ratio", "hk")}
+    own = {"Fourier": analytic.fourier_solve(nodes=n, shifts=1, **kw).ka,
+           "BEM": suite.bem_solution(point, n).ka}
+    spacings = {k: abs(v - ka) * n / (2 * np.pi) for k, v in own.items()}
+    assert spacings == pytest.approx({"Fourier": 0.040, "BEM": 0.037}, abs=0.002)
+    assert verify.POSITION_PANELS == pytest.approx(2 * 0.047, abs=0.01)
+
+
+def test_a_relaxation_layer_is_left_out_of_the_plain_edge_fit(monkeypatch):
+    """At V/V0 = 0.1 the pressure relaxes over ~5 spacings behind the leading edge (N = 1024):
+    no side of the Fourier collocation's leading edge holds the model to 2e-3 spacing, and a
+    plain fit through the pressure's side too put the edge 0.54 spacing off; without it, 0.003."""
+    n = 1024
+    point, case = verify.point_from_case("sls-partial-v0.1")
+    ref = verify.reference_for(point, case)
+    f = analytic.fourier_solve(nodes=n, shifts=1, load=0.3, speed=0.1, ratio=3.0, hk=1.0)
+    fields = {k: np.asarray(getattr(f, k)) for k in ("x_over_lambda", "pressure", "gap")}
+
+    def lead_error():
+        patch = verify.scalars_from_fields(fields, ref.shape)[1][0]
+        return abs(patch["leading_edge"] - ref.patches[0]["leading_edge"]) * n
+    assert lead_error() < 0.005
+    monkeypatch.setattr(verify, "EDGE_HOLDS", np.inf)  # every side in the plain fits
+    assert lead_error() > 0.5
+
+
+def test_verify_imports_no_private_name_of_bem():
+    import ast
+    import inspect
+    tree = ast.parse(inspect.getsource(verify))
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("bem"):
+            assert not node.module.startswith("bem._"), node.module
+            assert not any(a.name.startswith("_") for a in node.names)
+        if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) \
+                and node.value.id == "bem":
+            assert not node.attr.startswith("_"), node.attr
+
+
+def test_the_bems_own_scalars_pass_by_default(tmp_path, capsys):
+    """A correct solver's own scalars, not only those read from its fields: viscosine's BEM's
+    at sls-ratio1000 on N = 1024 (its μ 8.7e-4 off, more than what its fields give) pass."""
+    case, n = "sls-ratio1000", 1024
+    point, _ = verify.point_from_case(case)
+    own = suite.bem_solution(point, n, base="/").scalars()
+    keep = {k: v for k, v in own.items() if k in verify.SCALAR_KEYS and v is not None}
+    path = tmp_path / "s.jsonl"
+    path.write_text(json.dumps({"nodes": n, **keep}) + "\n", encoding="utf-8")
+    rc, out, err = _run(capsys, "--case", case, "--scalars", str(path), "--out",
+                        str(tmp_path / "a"), "--no-figures")
+    assert rc == 0, out + err
+    mu = _scalar_rows(_verdict(tmp_path / "a"))["mu"]
+    assert mu["difference"] > 5e-4 and mu["passed"]
 
 
 def test_the_grid_law_needs_the_grid_and_yields_to_rtol(tmp_path, capsys):
