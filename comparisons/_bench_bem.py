@@ -19,6 +19,8 @@ import numpy as np
 
 import bem
 
+from .convergence import observed_order
+
 
 def _progress(msg: str) -> None:
     print(msg, file=sys.stderr, flush=True)
@@ -41,9 +43,7 @@ def _appendix_b_mu(mat: bem.Prony, speed: float, load: float, hk: float) -> tupl
 
 
 def _order(n1, e1, n2, e2):
-    if e1 <= 0 or e2 <= 0:
-        return float("nan")
-    return math.log(e1 / e2) / math.log(n2 / n1)
+    return observed_order((n1, n2), (e1, e2))
 
 
 def table_elastic_limits(exponents, load, out) -> None:
@@ -80,8 +80,7 @@ def table_elastic_limits(exponents, load, out) -> None:
                   file=out)
         if len(rows) >= 3:
             ns = np.array([r[0] for r in rows], float)
-            fits = [-np.polyfit(np.log(ns), np.log([r[1][i] for r in rows]), 1)[0]
-                    for i in range(3)]
+            fits = [observed_order(ns, [r[1][i] for r in rows]) for i in range(3)]
             print(f"{'fit':>8} {'':>10} {fits[0]:6.2f} {'':>12} {fits[1]:6.2f} {'':>10} "
                   f"{fits[2]:6.2f}", file=out)
 

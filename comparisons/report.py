@@ -37,6 +37,8 @@ import analytic
 from viscosine import Fields
 
 from . import _html, crosscheck, runner
+from .convergence import observed_order
+from .convergence import richardson as _richardson
 from .store import Store
 
 RATIO, HK = 3.0, 1.0
@@ -558,18 +560,15 @@ def fit_order(N, err, scale=1.0):
     N ≥ 1024 whose error is above the round-off floor.  Single steps scatter with where the contact
     edge falls inside its panel; the fit over several doublings is what is meaningful."""
     N, err = np.asarray(N, float), np.asarray(err, float)
-    ok = np.isfinite(err) & (err > ROUNDOFF_FLOOR * abs(scale)) & (N >= min(ORDER_FROM, N.max() / 2))
-    if ok.sum() < 2:
-        return float("nan")
-    return float(-np.polyfit(np.log(N[ok]), np.log(err[ok]), 1)[0])
+    fine = N >= min(ORDER_FROM, N.max() / 2)
+    return observed_order(N[fine], err[fine], ROUNDOFF_FLOOR * abs(scale))
 
 
 def richardson(N, values, order):
     """Extrapolate the last two meshes assuming error ∝ N^(−order) (mesh ratio 2)."""
-    if not math.isfinite(order) or len(values) < 2:
+    if len(values) < 2:
         return float("nan")
-    r = 2.0 ** order
-    return float((r * values[-1] - values[-2]) / (r - 1.0))
+    return _richardson(values[-2], values[-1], order)
 
 
 def convergence(store, cfg):

@@ -91,6 +91,8 @@ from pathlib import Path
 
 import numpy as np
 
+from .convergence import observed_order, richardson
+
 DATA = Path(__file__).resolve().parent / "data" / "suite"
 SUITE_FILE = DATA / "suite.json"
 
@@ -227,7 +229,7 @@ def study(nodes, values, last=LAST):
                    regime="round-off")
         return out
     dd = np.maximum(d, floor)
-    p = float(-np.polyfit(np.log2(N[1:]), np.log2(dd), 1)[0])
+    p = observed_order(N[1:], dd)
     out["order"] = p
     if not p >= MIN_ORDER:
         spread = float(np.max(q) - np.min(q))
@@ -243,7 +245,7 @@ def study(nodes, values, last=LAST):
     r = 2.0 ** pu - 1.0
     steps = np.arange(-(d.size - 1), 1, dtype=float)  # 0 at the finest difference
     envelope = float(np.max(dd * 2.0 ** (pu * steps)))
-    out.update(richardson=float(q[-1] + (q[-1] - q[-2]) / r), estimate=envelope / r,
+    out.update(richardson=richardson(q[-2], q[-1], pu), estimate=envelope / r,
                regime="asymptotic")
     return out
 

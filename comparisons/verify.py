@@ -136,6 +136,7 @@ from viscosine import Fields
 from viscosine._fields import UNIFORM_SPACING, WIDTH
 
 from . import suite as _suite
+from .convergence import observed_order
 
 REL = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction")
 ABS = ("ka", "ke", "ke_hat")
@@ -1501,12 +1502,7 @@ ORDER_FLOOR = 1e-12  # differences below this are round-off: left out of the ord
 def fit_order(nodes, errors):
     """Order p of err ∝ N^−p: least squares over the finite errors above ORDER_FLOOR (NaN when
     fewer than two remain)."""
-    n = np.asarray(nodes, float)
-    e = np.asarray([np.nan if v is None else v for v in errors], float)
-    ok = np.isfinite(e) & (e > ORDER_FLOOR)
-    if ok.sum() < 2:
-        return float("nan")
-    return float(-np.polyfit(np.log(n[ok]), np.log(e[ok]), 1)[0])
+    return observed_order(nodes, errors, ORDER_FLOOR)
 
 
 def convergence(results, reference):
