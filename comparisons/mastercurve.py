@@ -43,6 +43,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._io import write_text
+
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
 DEFAULT_RTOL = 1e-3
 #: the columns of points.csv (and the keys of each point in mastercurve.json)
@@ -313,15 +315,6 @@ def _append(path, row):
         os.fsync(fh.fileno())
 
 
-def _write_atomic(path, text):
-    tmp = f"{path}.{os.getpid()}.part"
-    try:
-        with open(tmp, "w", encoding="utf-8", newline="\n") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
 
 
 def _json_safe(v):
@@ -474,7 +467,7 @@ def main(args) -> int:
         raise BadInput(f"--out {out}: its points.csv holds a run with other parameters; choose "
                        "another folder (or remove that file)")
     if old_params is None:
-        _write_atomic(csv_path, "".join(f"# {ln}\n" for ln in (
+        write_text(csv_path, "".join(f"# {ln}\n" for ln in (
             "viscosine mastercurve points (python -m comparisons mastercurve)", line, UNITS))
             + ",".join(COLUMNS) + "\n")
     t0 = time.monotonic()
@@ -495,7 +488,7 @@ def main(args) -> int:
     total = len(plan)
     doc = {"parameters": parameters, "columns": list(COLUMNS), "units": UNITS,
            "points": list(table.rows)}
-    _write_atomic(os.path.join(out, "mastercurve.json"),
+    write_text(os.path.join(out, "mastercurve.json"),
                   json.dumps(_json_safe(doc), indent=1, allow_nan=False) + "\n")
     if table.success.any():
         write_figure(os.path.join(out, "mastercurve.png"), table)

@@ -37,6 +37,7 @@ import analytic
 from viscosine import Fields
 
 from . import _html, crosscheck, runner
+from ._io import write_text
 from .convergence import observed_order
 from .convergence import richardson as _richardson
 from .store import Store
@@ -926,16 +927,9 @@ def write_report(folder, store, cfg, timings, failures, where=None):
               + [[f"time: {k}", f"{v:.1f} s"] for k, v in
                  (timings | {"figures and tables": time.monotonic() - t_start}).items()])
     md = doc.markdown()
-    _atomic_write(os.path.join(folder, "report.md"), md)
-    _atomic_write(os.path.join(folder, "report.html"), doc.html(folder))
+    write_text(os.path.join(folder, "report.md"), md)
+    write_text(os.path.join(folder, "report.html"), doc.html(folder))
     return conv
-
-
-def _atomic_write(path, text):
-    tmp = path + ".part"
-    with open(tmp, "w") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
 
 
 def main(args):

@@ -17,7 +17,6 @@ from __future__ import annotations
 import hashlib
 import json
 import os
-import secrets
 import sys
 
 import numpy as np
@@ -26,6 +25,7 @@ from viscosine import Fields
 from viscosine._fields import WIDTH  # the cells of a non-uniform grid (optional)
 
 from . import runner
+from ._io import temporary_name
 
 FIELD_NAMES = ("x_over_lambda", "pressure", "displacement", "gap")
 
@@ -38,11 +38,6 @@ def key(spec):
     """The file stem of a spec: a hash of its JSON form."""
     text = json.dumps(runner.public(spec), sort_keys=True)
     return hashlib.sha1(text.encode()).hexdigest()[:16]
-
-
-def _tmp_name(path):
-    folder, base = os.path.split(path)
-    return os.path.join(folder, f".{base}.{os.getpid()}.{secrets.token_hex(4)}.part")
 
 
 class Store:
@@ -135,7 +130,7 @@ class Store:
 
     @staticmethod
     def _atomic(path, write, mode):
-        tmp = _tmp_name(path)
+        tmp = temporary_name(path)
         try:
             with open(tmp, mode, **({"encoding": "utf-8"} if "b" not in mode else {})) as fh:
                 write(fh)

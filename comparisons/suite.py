@@ -91,6 +91,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ._io import write_text
 from .convergence import observed_order, richardson
 
 DATA = Path(__file__).resolve().parent / "data" / "suite"
@@ -861,7 +862,7 @@ def write_fields(path, case, fields):
         for c in FIELD_COLUMNS:
             row += [repr(float(fields[c][j])), f"{float(fields[c + '_err'][j]):.3e}"]
         w.writerow(row)
-    _atomic_write(path, buf.getvalue())
+    write_text(path, buf.getvalue())
 
 
 def read_fields(path) -> dict:
@@ -871,15 +872,6 @@ def read_fields(path) -> dict:
     head = rows[0]
     data = np.array(rows[1:], dtype=float)
     return {h: data[:, i] for i, h in enumerate(head)}
-
-
-def _atomic_write(path, text):
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(path.name + ".part")
-    with open(tmp, "w", encoding="utf-8", newline="") as fh:
-        fh.write(text)
-    os.replace(tmp, path)
 
 
 def case_fields(case, base=DATA) -> dict:
@@ -1016,7 +1008,7 @@ def _recomputed(cases, out, resume, workers, scheduler, log):
 
     def save(doc):
         if out:
-            _atomic_write(Path(out) / f"{doc['name']}.json", json.dumps(doc))
+            write_text(Path(out) / f"{doc['name']}.json", json.dumps(doc))
         return doc
 
     if not todo:
@@ -1107,7 +1099,7 @@ def certify(names=(), log=None, suite_file=None):
         log(f"suite: {case['name']}: certified in {time.perf_counter() - t0:.1f} s "
             f"(mu {cert['scalars']['mu']['digits']} digits)")
     suite["rule"] = RULE
-    _atomic_write(suite_file, json.dumps(suite, indent=1, ensure_ascii=False) + "\n")
+    write_text(suite_file, json.dumps(suite, indent=1, ensure_ascii=False) + "\n")
 
 
 # --------------------------------------------------------------------------- export
@@ -1245,14 +1237,14 @@ def export(folder, names=(), suite=None):
     for case in cases:
         d = folder / case["name"]
         cert = case["certified"]
-        _atomic_write(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
+        write_text(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
                                                     ensure_ascii=False) + "\n")
-        _atomic_write(d / "prony.txt", _prony_text(case["point"]))
+        write_text(d / "prony.txt", _prony_text(case["point"]))
         if case["point"].get("material"):  # the file as the user would hold it
             shutil.copyfile(DATA / case["point"]["material"], d / _source_name(case["point"]))
         if case["point"].get("prony") or case["point"].get("material"):
             _material_png(d / "material.png", case)
-        _atomic_write(d / "profile.csv", _profile_text(case["point"]))
+        write_text(d / "profile.csv", _profile_text(case["point"]))
         sc = {"case": case["name"], "status": cert["status"], "notes": cert["notes"],
               "method": cert["method"],
               "scalars": {k: {kk: r[kk] for kk in ("value", "digits", "rounded", "error", "method")}
@@ -1262,20 +1254,20 @@ def export(folder, names=(), suite=None):
                            for k in PATCH_KEYS} for p in cert["patches"]],
               "fields": {"file": "fields.csv", "grid": cert["fields"]["grid"],
                          "max_error": cert["fields"]["max_error"]}}
-        _atomic_write(d / "scalars.json", json.dumps(sc, indent=1, ensure_ascii=False) + "\n")
+        write_text(d / "scalars.json", json.dumps(sc, indent=1, ensure_ascii=False) + "\n")
         buf = io.StringIO()
         w = csv.writer(buf, lineterminator="\n")
         w.writerow(["patch", "quantity", "value", "certified_digits", "rounded", "error_bound",
                     "method"])
         for row in _scalar_rows(cert):
             w.writerow(["" if v is None else (repr(v) if isinstance(v, float) else v) for v in row])
-        _atomic_write(d / "scalars.csv", buf.getvalue())
+        write_text(d / "scalars.csv", buf.getvalue())
         shutil.copyfile(DATA / cert["fields"]["file"], d / "fields.csv")
         written.append(d)
     index = {"suite_version": suite["version"], "description": suite["description"],
              "rule": suite["rule"], "cases": [c["name"] for c in cases]}
-    _atomic_write(folder / "index.json", json.dumps(index, indent=1, ensure_ascii=False) + "\n")
-    _atomic_write(folder / "README.md", _index_readme(suite, cases))
+    write_text(folder / "index.json", json.dumps(index, indent=1, ensure_ascii=False) + "\n")
+    write_text(folder / "README.md", _index_readme(suite, cases))
     return written
 
 

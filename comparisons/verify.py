@@ -136,6 +136,7 @@ from viscosine import Fields
 from viscosine._fields import UNIFORM_SPACING, WIDTH
 
 from . import suite as _suite
+from ._io import write_text
 from .convergence import observed_order
 
 REL = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction")
@@ -1767,8 +1768,8 @@ def write_report(folder, ev, point, reference, results, label, inputs, case=None
     if figures and point.get("prony"):
         figs.append(_material_figure(folder, point))
     md = markdown(ev, point, reference, results, label, figs, inputs, case)
-    _suite._atomic_write(Path(folder) / "report.md", md)
-    _suite._atomic_write(Path(folder) / "report.html",
+    write_text(Path(folder) / "report.md", md)
+    write_text(Path(folder) / "report.html",
                          _html.render(md, folder, title=f"viscosine verify: {label}"))
     doc = {"verdict": ev["verdict"], "failed": ev["failed"], "label": label, "point": point,
            "case": case["name"] if case else None, "reference": {
@@ -1779,7 +1780,7 @@ def write_report(folder, ev, point, reference, results, label, inputs, case=None
            "convergence": ev["convergence"], "inputs": inputs,
            "results": [{"nodes": r.nodes, "source": r.source, "scalars": r.scalars,
                         "estimated_errors": r.errors, "patches": r.patches} for r in results]}
-    _suite._atomic_write(Path(folder) / "verdict.json",
+    write_text(Path(folder) / "verdict.json",
                          json.dumps(_jsonable(doc), indent=1, ensure_ascii=False,
                                     allow_nan=False) + "\n")
 

@@ -161,3 +161,22 @@ def test_report_resume_reruns_only_what_is_missing_or_broken(tmp_path, monkeypat
     assert err.count("running it again") == 2 and "Traceback" not in err
     assert os.stat(_path(st, jobs[0][0], "json")).st_mtime_ns == mtime
     assert all(st.has(spec, f) for spec, f in jobs)
+
+
+def test_the_one_text_writer_is_utf8_and_atomic(tmp_path, monkeypatch):
+    """comparisons._io.write_text: UTF-8 with '\\n' whatever the locale (the report's μ, ∞),
+    the folder made, and nothing left behind by a write that fails."""
+    import os
+
+    from comparisons import _io
+    path = tmp_path / "a" / "report.md"
+    _io.write_text(path, "μ = 0.30, E∞/E0 = 3\n")
+    assert path.read_bytes() == "μ = 0.30, E∞/E0 = 3\n".encode("utf-8")
+
+    def broken(src, dst):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(os, "replace", broken)
+    with pytest.raises(OSError):
+        _io.write_text(path, "other")
+    assert path.read_bytes() == "μ = 0.30, E∞/E0 = 3\n".encode("utf-8")
+    assert sorted(p.name for p in path.parent.iterdir()) == ["report.md"]

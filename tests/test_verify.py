@@ -662,7 +662,7 @@ def test_an_unwritable_out_is_refused_up_front_like_point_and_sweep(tmp_path, ca
 def test_a_report_that_cannot_be_written_is_one_line_status_1(tmp_path, capsys, monkeypatch):
     def refuse(*a, **k):
         raise OSError(28, "No space left on device")
-    monkeypatch.setattr(suite, "_atomic_write", refuse)
+    monkeypatch.setattr(verify, "write_text", refuse)
     path = tmp_path / "s.jsonl"
     path.write_text('{"mu": 0.3}\n', encoding="utf-8")
     rc, out, err = _run(capsys, "--case", CASE, "--scalars", str(path), "--out",
