@@ -228,6 +228,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         good = (res, grid)
         scalars.append((n, _level_scalars(res, grid, profile, material, speed, amp)))
         estimate, reason, note = _estimate(scalars, material, speed)
+        if scalars[-1][1].get("use_law"):  # the estimate chose the first-order memory law
+            res["friction"] = res["friction_law"]
         if nodes is None and reason is None and _met(estimate, scalars[-1][1], rtol):
             reached = n
             break
