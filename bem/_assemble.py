@@ -373,7 +373,23 @@ def _full_patch(sigma, y, profile, load):
 # --------------------------------------------------------------------------
 # Friction (mean frictional stress, positive when it resists the motion)
 # --------------------------------------------------------------------------
-def _friction(sigma, y, material: Prony, speed: float):
+def _spectra(sigma, y):
+    """(sigma_n, y_n, n, weight) for n = 0 … N/2: the pressure's point-value coefficients
+    (the DFT times sinc(pi n/N), `_friction`), the profile's, and the weight of each mode in a
+    sum over n > 0 (0 for n = 0, 1/2 at Nyquist)."""
+    n = sigma.size
+    sh = np.fft.rfft(sigma) / n
+    yh = np.fft.rfft(y) / n
+    modes = np.arange(sh.size, dtype=float)
+    sh = sh * np.sinc(modes / n)
+    weight = np.ones_like(modes)
+    weight[0] = 0.0
+    if n % 2 == 0:
+        weight[-1] = 0.5  # Nyquist: +N/2 and -N/2 share one discrete mode
+    return sh, yh, modes, weight
+
+
+def _friction(sigma, y, material: Prony, speed: float, spectra=None):
     """(dissipation estimate, direct estimate) of tau_f (1 - nu^2)/E_ref.
 
     tau_f = (1/lambda) int sigma dv/dx dx in the paper (eq. 3.1), negative when it
@@ -387,24 +403,17 @@ def _friction(sigma, y, material: Prony, speed: float):
     real space sigma_j = sigma - h^2 sigma''/24 + ..., the opposite of a panel
     average); hence sigma_n = DFT_n * sinc(pi n/N).  The direct estimate
     -(1/2 pi) int sigma d(ky)/dX dX = sum_{n>0} 2 n Im(conj(sigma_n) y_n) uses the
-    profile instead of v (equal on the contact).
+    profile instead of v (equal on the contact).  ``spectra``: `_spectra` of the same
+    sigma and y, when already made.
     """
-    n = sigma.size
-    sh = np.fft.rfft(sigma) / n
-    yh = np.fft.rfft(y) / n
-    modes = np.arange(sh.size, dtype=float)
-    sh = sh * np.sinc(modes / n)
-    weight = np.ones_like(modes)
-    weight[0] = 0.0
-    if n % 2 == 0:
-        weight[-1] = 0.5  # Nyquist: +N/2 and -N/2 share one discrete mode
+    sh, yh, modes, weight = _spectra(sigma, y) if spectra is None else spectra
     jim = material.jstar(modes, speed).imag
     diss = float(np.sum(weight * 4.0 * jim * np.abs(sh) ** 2))
     direct = float(np.sum(weight * 2.0 * modes * np.imag(np.conj(sh) * yh)))
     return diss, direct
 
 
-def _lag_friction(sigma, y, material: Prony, speed: float):
+def _lag_friction(sigma, y, material: Prony, speed: float, spectra=None):
     """(tau_f, L_eff): the friction of the first-order memory law, for memories far shorter
     than every distance that matters (the contact, the panels the edges are fitted over).
 
@@ -420,16 +429,8 @@ def _lag_friction(sigma, y, material: Prony, speed: float):
     and a the contact's half-width (measured on the standard linear solid against the
     semi-analytic road, E_inf/E0 = 1.5 ... 1000, p~ = 1e-3 ... 0.45, V/V0 = 1e-4 and 1e-3: at
     most 0.84 L/a, at the lightest load and softest material).  The paper's low-speed limit
-    (§3), to first order for any Prony series."""
-    n = sigma.size
-    sh = np.fft.rfft(sigma) / n
-    yh = np.fft.rfft(y) / n
-    modes = np.arange(sh.size, dtype=float)
-    sh = sh * np.sinc(modes / n)
-    weight = np.ones_like(modes)
-    weight[0] = 0.0
-    if n % 2 == 0:
-        weight[-1] = 0.5
+    (§3), to first order for any Prony series.  ``spectra``: as for `_friction`."""
+    sh, yh, modes, weight = _spectra(sigma, y) if spectra is None else spectra
     js = material.j_plus + sum(j for j, _ in material.terms)
     moment = sum(j * speed * t / _TWO_PI for j, t in material.terms)
     second = sum(j * (speed * t / _TWO_PI) ** 2 for j, t in material.terms)

@@ -36,7 +36,8 @@ def _level_scalars(res, grid, profile, material, speed, amp):
         mean_p = float(sigma.sum()) / grid.nodes
         res["friction"] = (tau_f, None)  # build_result's, should this grid be the answer
     else:
-        res["friction"] = _assemble._friction(sigma, grid.y, material, speed)
+        spectra = _assemble._spectra(sigma, grid.y)  # the friction's, and the law's below
+        res["friction"] = _assemble._friction(sigma, grid.y, material, speed, spectra)
         tau_f = res["friction"][0]
         mean_p = float(sigma.mean())
     out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,
@@ -55,7 +56,7 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     if not grid.window and _lag_law_applies(material, speed, grid):
         # every memory far under the fitted distances: the dissipation form converges like
         # 1/N there, the first-order memory law like 1/N^2 plus its remainder (in the estimate)
-        tau_law, l_eff = _assemble._lag_friction(sigma, grid.y, material, speed)
+        tau_law, l_eff = _assemble._lag_friction(sigma, grid.y, material, speed, spectra)
         res["friction_law"] = (tau_law, res["friction"][1])
         half = 0.5 * min(p.width for p in patches)
         out.update(tau_f_law=tau_law, mu_law=tau_law / mean_p if mean_p > 0 else math.nan,
