@@ -390,10 +390,9 @@ def collocation_shifts(h: float, j_plus: float, terms, lengths) -> list[float]:
 
     if not bad or f(0.0) >= 0.0:
         return out
-    if len(bad) == 1:  # closed form (collocation_shift's)
-        i, j, _, ln, s = bad[0]
-        e = (s * s + k) * (base + j) / (j * s * (1.0 + k))
-        out[i] = max(-ln * math.log(e), 0.0)
+    if len(bad) == 1:  # one term against what acts at once: collocation_shift's closed form
+        i, j, _, ln, _ = bad[0]
+        out[i] = collocation_shift(h, ln, base, j)
         return out
     lo, hi = 0.0, h * (1.0 - k) / (2.0 * (1.0 + k))
     for _ in range(100):  # bisection to the last bits of delta (deterministic)
