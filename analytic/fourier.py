@@ -72,7 +72,6 @@ steady-sliding displacement), (3.1) (friction), Appendix A (the elastic limits) 
 from __future__ import annotations
 
 import math
-import numbers
 import time
 from dataclasses import dataclass, field
 
@@ -80,6 +79,8 @@ import numpy as np
 from scipy import linalg
 from scipy.optimize import brentq, minimize_scalar
 from scipy.special import dawsn
+
+from viscosine._checks import bad, integer, is_integer, real, series
 
 _TWO_PI = 2.0 * math.pi
 
@@ -110,20 +111,6 @@ _MAX_ACTIVE_SET = 100
 _FIT_POWERS = (1.5, 2.5, 3.5, 4.5, 5.5, 6.5)
 _FIT_WINDOW = 0.25
 _FIT_MIN_POINTS = 24
-
-
-def _bad(name, value, allowed):
-    return ValueError(f"{name}={value!r} is not allowed: {allowed}")
-
-
-def _is_real(v):
-    return isinstance(v, numbers.Real) and not isinstance(v, bool)
-
-
-def _real(name, value, allowed, test):
-    if not _is_real(value) or not math.isfinite(float(value)) or not test(float(value)):
-        raise _bad(name, value, allowed)
-    return float(value)
 
 
 # --------------------------------------------------------------------------------------------
@@ -233,17 +220,6 @@ def _zero_between(f, lo, hi, rising):
     return brentq(f, a, hi - d, xtol=1e-300, rtol=4.0 * np.finfo(float).eps, maxiter=500)
 
 
-def _series(values, ok):
-    """A tuple of floats from a scalar or a sequence, or None if any is not finite or not ok."""
-    try:
-        arr = np.atleast_1d(np.asarray(values, dtype=float)).ravel()
-    except (TypeError, ValueError):
-        return None
-    if not np.all(np.isfinite(arr)) or not all(ok(v) for v in arr):
-        return None
-    return tuple(float(v) for v in arr)
-
-
 def material(*, ratio=None, creep=None, relaxation=None):
     """The material of `fourier_solve`, validated (exactly one form; none: ratio 3).
 
@@ -267,12 +243,12 @@ def material(*, ratio=None, creep=None, relaxation=None):
              if v is not None}
     if len(given) > 1:
         name = list(given)[1]
-        raise _bad(name, given[name], f"one material only (got {' and '.join(given)}): "
-                   "ratio, creep or relaxation")
+        raise bad(name, given[name], f"one material only (got {' and '.join(given)}): "
+                  "ratio, creep or relaxation")
     if ratio is None and creep is None and relaxation is None:
         ratio = 3.0
     if ratio is not None:
-        r = _real("ratio", ratio, "a finite E∞/E0 ≥ 1 (1 is elastic)", lambda v: v >= 1.0)
+        r = real("ratio", ratio, "a finite E∞/E0 ≥ 1 (1 is elastic)", lambda v: v >= 1.0)
         return Material("creep", 1.0, ((r - 1.0) / r,), (1.0,))
     form, value = ("creep", creep) if creep is not None else ("relaxation", relaxation)
     what = ("a triple (J0, J_i, tau_i) of J(t) = J0 − Σ J_i exp(−t/τ_i)" if form == "creep" else
@@ -280,20 +256,22 @@ def material(*, ratio=None, creep=None, relaxation=None):
     try:
         base, amps, times = value
     except (TypeError, ValueError):
-        raise _bad(form, value, what) from None
-    if not (_is_real(base) and math.isfinite(float(base)) and float(base) > 0.0):
-        raise _bad(form, value, what + " with a finite base value > 0")
-    base = float(base)
-    amps = _series(amps, lambda v: v >= 0.0)
-    times = _series(times, lambda v: v > 0.0)
-    if amps is None or times is None:
-        raise _bad(form, value, what + " with finite amplitudes ≥ 0 and times > 0")
+        raise bad(form, value, what) from None
+    try:  # a bad part is refused as the whole triple, named by its form
+        base = real(form, base, "", lambda v: v > 0.0)
+    except ValueError:
+        raise bad(form, value, what + " with a finite base value > 0") from None
+    try:
+        amps = series(form, amps, "", lambda v: v >= 0.0)
+        times = series(form, times, "", lambda v: v > 0.0)
+    except ValueError:
+        raise bad(form, value, what + " with finite amplitudes ≥ 0 and times > 0") from None
     if len(amps) != len(times):
-        raise _bad(form, value, f"{what} with one time per amplitude (got {len(amps)} "
-                   f"amplitudes and {len(times)} times)")
+        raise bad(form, value, f"{what} with one time per amplitude (got {len(amps)} "
+                  f"amplitudes and {len(times)} times)")
     if form == "creep" and not base - math.fsum(amps) > 0.0:
-        raise _bad(form, value, f"{what} with J(0+) = J0 − Σ J_i > 0 (got "
-                   f"{base - math.fsum(amps)!r})")
+        raise bad(form, value, f"{what} with J(0+) = J0 − Σ J_i > 0 (got "
+                  f"{base - math.fsum(amps)!r})")
     return Material(form, base, amps, times)
 
 
@@ -313,7 +291,7 @@ def complex_compliance(modes, speed, **material_kw):
     -------
     ndarray of complex, in (1 − ν²)/E_ref.
     """
-    w = _real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
+    w = real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
     return material(**material_kw).jstar(modes, w)
 
 
@@ -322,7 +300,7 @@ def complex_modulus(modes, speed, **material_kw):
 
     Same parameters as `complex_compliance`; returns E_ref/(1 − ν²) units.
     """
-    w = _real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
+    w = real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
     return material(**material_kw).estar(modes, w)
 
 
@@ -360,13 +338,13 @@ def full_contact(speed, *, hk=1.0, load=None, **material_kw):
     ----------
     Appendix B (eqs B1–B8) of the paper.
     """
-    w = _real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
-    hk = _real("hk", hk, "a finite amplitude hk > 0", lambda v: v > 0.0)
+    w = real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
+    hk = real("hk", hk, "a finite amplitude hk > 0", lambda v: v > 0.0)
     e1 = complex(material(**material_kw).estar(np.array([1.0]), w)[0])
     out = {"load_threshold": 0.5 * hk * abs(e1), "modulus": e1,
            "tau_f": -0.25 * hk * hk * e1.imag, "ke_hat": -math.atan2(e1.imag, e1.real)}
     if load is not None:
-        p = _real("load", load, "a finite mean pressure > 0", lambda v: v > 0.0)
+        p = real("load", load, "a finite mean pressure > 0", lambda v: v > 0.0)
         out["full_contact"] = p >= out["load_threshold"]
         out["mu"] = out["tau_f"] / p
     return out
@@ -925,18 +903,18 @@ class FourierResult:
 
 
 def _check_nodes(nodes):
-    seq = [nodes] if isinstance(nodes, numbers.Integral) else nodes
+    seq = [nodes] if is_integer(nodes) else nodes
     allowed = (f"an even number of points per period in [{MIN_NODES}, {MAX_NODES}], or an "
                "increasing sequence of them (three or more for Richardson's extrapolation)")
     try:
         seq = list(seq)
     except TypeError:
-        raise _bad("nodes", nodes, allowed) from None
-    if not seq or not all(isinstance(v, numbers.Integral) and not isinstance(v, bool)
-                          and MIN_NODES <= v <= MAX_NODES and v % 2 == 0 for v in seq):
-        raise _bad("nodes", nodes, allowed)
+        raise bad("nodes", nodes, allowed) from None
+    if not seq or not all(is_integer(v) and MIN_NODES <= v <= MAX_NODES and v % 2 == 0
+                          for v in seq):
+        raise bad("nodes", nodes, allowed)
     if any(b <= a for a, b in zip(seq[:-1], seq[1:])):
-        raise _bad("nodes", nodes, allowed)
+        raise bad("nodes", nodes, allowed)
     return tuple(int(v) for v in seq)
 
 
@@ -976,7 +954,7 @@ def memory_resolution(speed, nodes, **material_kw):
         The shortest layer w θ_min/(2π) (x/λ; inf without memory or at rest) and whether
         ``length * nodes >= MIN_LAYER_POINTS``.
     """
-    w = _real("speed", speed, "a finite speed w = V τ_ref k ≥ 0", lambda v: v >= 0.0)
+    w = real("speed", speed, "a finite speed w = V τ_ref k ≥ 0", lambda v: v >= 0.0)
     thetas = material(**material_kw).relaxation_times()
     if w == 0.0 or not thetas:
         return math.inf, True
@@ -1034,21 +1012,19 @@ def fourier_solve(*, load=None, penetration=None, speed, ratio=None, creep=None,
                          "exactly one of load and penetration")
     if load is not None:
         control = "load"
-        value = _real("load", load, "a finite mean pressure p̃ > 0", lambda v: v > 0.0)
+        value = real("load", load, "a finite mean pressure p̃ > 0", lambda v: v > 0.0)
     else:
         control = "penetration"
-        value = _real("penetration", penetration, "a finite penetration Δ/h in (0, 1]",
+        value = real("penetration", penetration, "a finite penetration Δ/h in (0, 1]",
                       lambda v: 0.0 < v <= 1.0)
-    w = _real("speed", speed, "a finite speed w = V τ_ref k ≥ 0", lambda v: v >= 0.0)
-    hk = _real("hk", hk, "a finite amplitude hk > 0", lambda v: v > 0.0)
+    w = real("speed", speed, "a finite speed w = V τ_ref k ≥ 0", lambda v: v >= 0.0)
+    hk = real("hk", hk, "a finite amplitude hk > 0", lambda v: v > 0.0)
     mat = material(ratio=ratio, creep=creep, relaxation=relaxation)
     levels_n = _check_nodes(nodes)
-    if not (isinstance(shifts, numbers.Integral) and not isinstance(shifts, bool)
-            and 1 <= shifts <= 64):
-        raise _bad("shifts", shifts, "an integer number of shifted grids per level in [1, 64]")
+    shifts = integer("shifts", shifts, "an integer number of shifted grids per level in [1, 64]",
+                     lambda v: 1 <= v <= 64)
     if not isinstance(require_resolved, bool):
-        raise _bad("require_resolved", require_resolved, "True or False")
-    shifts = int(shifts)
+        raise bad("require_resolved", require_resolved, "True or False")
     kw = _material_kw(mat)
     fc = full_contact(w, hk=hk, **kw)
     common = {"control": control, "asked": value, "speed": w, "hk": hk,

@@ -26,8 +26,10 @@ protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
 it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.
 """
 from viscosine import Fields
+from viscosine._checks import positive_int as _positive_int
+from viscosine._checks import real as _real
 
-from ._accepted import ACCEPTED, MAX_NODES, _check_positive_int, _check_real, validate
+from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._front import solve_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
@@ -56,8 +58,8 @@ def influence_coefficients(material, speed, nodes):
     """
     if not isinstance(material, Prony):
         raise ValueError(f"material={material!r} is not allowed: a bem.Prony creep function")
-    speed = _check_real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0)
-    nodes = _check_positive_int("nodes", nodes, 8)
+    speed = _real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0)
+    nodes = _positive_int("nodes", nodes, 8)
     return _coefficients(material.j_plus, material.terms, speed, nodes)
 
 

@@ -11,12 +11,9 @@ E∞/E0 of the standard linear solid, hk = h k; Prony compliances in 1/E_ref, ti
 from __future__ import annotations
 
 import math
-import numbers
 import os
 
-from viscosine._checks import at_most_one_control, bad, check_reals, real
-
-from ._inputs import _bad
+from viscosine._checks import at_most_one_control, bad, check_reals, integer, real
 
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is the elastic (relaxed) solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30
@@ -108,12 +105,8 @@ ACCEPTED = {
 
 def _integer(name, value):
     low, high, text = ACCEPTED[name]
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise bad(name, value, text)
-    v = int(value)
-    if not low <= v <= high or (name == "max_nodes" and v & (v - 1)):
-        raise ValueError(f"{name}={v!r} is not allowed: {text}")
-    return v
+    return integer(name, value, text, lambda v: low <= v <= high
+                   and not (name == "max_nodes" and v & (v - 1)))
 
 
 def _check_material(material):
@@ -186,7 +179,7 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
     if material is not None:
         _check_material(material)
     if load is not None:
-        v = real("load", load, ACCEPTED["load"][2])
+        v = real("load", load, ACCEPTED["load"][2], kind=True)
         low, high = LOAD_OVER_AMPLITUDE
         if not (v > 0.0 and low <= v / amp <= high):
             raise bad("load", v, ACCEPTED["load"][2] + f" (here hk = {amp!r})")
@@ -195,24 +188,4 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
         if value is not None:
             out[name] = _integer(name, value)
     return out
-
-
-def _check_positive_int(name, value, minimum):
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise _bad(name, value, f"an integer >= {minimum}")
-    if value < minimum:
-        raise _bad(name, value, f"an integer >= {minimum}")
-    return int(value)
-
-
-def _check_real(name, value, allowed, test):
-    if isinstance(value, bool):
-        raise _bad(name, value, allowed)
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise _bad(name, value, allowed) from None
-    if not math.isfinite(v) or not test(v):
-        raise _bad(name, value, allowed)
-    return v
 

@@ -6,9 +6,8 @@ from __future__ import annotations
 import math
 import warnings
 
-import numpy as np
-
 from viscosine import _si, _table
+from viscosine._checks import real, reals
 
 from . import _solver
 from ._accepted import ACCEPTED, validate
@@ -107,13 +106,9 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         if amplitude is not None:
             raise ValueError(f"amplitude={amplitude!r} is not allowed with heights=: the "
                              "sampled profile fixes its amplitude (max y − mean y)")
-        lam = _si._real("wavelength", wavelength, "m", lambda v: v > 0.0, "a finite length > 0")
+        lam = real("wavelength", wavelength, "a finite length > 0", lambda v: v > 0.0, unit="m")
         k = 2.0 * math.pi / lam
-        try:
-            ky = np.asarray(heights, dtype=float) * k
-        except (TypeError, ValueError):
-            raise ValueError(f"heights={heights!r} is not allowed: a 1-D array of heights "
-                             "[m]") from None
+        ky = reals("heights", heights, "a 1-D array of heights", unit="m") * k
         profile = SampledProfile(ky)
         amplitude = profile.amplitude / k
     model = None

@@ -12,13 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-
-def _bad(name: str, value, allowed: str) -> ValueError:
-    return ValueError(f"{name}={value!r} is not allowed: {allowed}")
-
-
-def _finite(x) -> bool:
-    return bool(np.all(np.isfinite(np.asarray(x, dtype=float))))
+from viscosine._checks import bad, real, reals, series
 
 
 # --------------------------------------------------------------------------
@@ -53,33 +47,21 @@ class Prony:
     ratio: float | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
-        try:
-            j0 = float(self.J0)
-        except (TypeError, ValueError):
-            raise _bad("J0", self.J0, "a finite positive compliance") from None
-        jj = tuple(float(v) for v in np.atleast_1d(np.asarray(self.J, dtype=float)).ravel()) \
-            if np.size(self.J) else ()
-        tt = tuple(float(v) for v in np.atleast_1d(np.asarray(self.tau, dtype=float)).ravel()) \
-            if np.size(self.tau) else ()
-        if not math.isfinite(j0):
-            raise _bad("J0", self.J0, "a finite positive compliance")
+        j0 = real("J0", self.J0, "a finite positive compliance")
+        jj = series("J", self.J, "finite amplitudes J_i >= 0", lambda v: v >= 0.0)
+        tt = series("tau", self.tau, "finite retardation times tau_i > 0", lambda v: v > 0.0)
         if len(jj) != len(tt):
-            raise _bad("J", self.J, f"one amplitude per retardation time (got {len(jj)} "
-                       f"amplitudes and {len(tt)} times)")
-        for v in jj:
-            if not math.isfinite(v) or v < 0.0:
-                raise _bad("J", self.J, "finite amplitudes J_i >= 0")
-        for v in tt:
-            if not math.isfinite(v) or v <= 0.0:
-                raise _bad("tau", self.tau, "finite retardation times tau_i > 0")
+            raise bad("J", self.J, f"one amplitude per retardation time (got {len(jj)} "
+                      f"amplitudes and {len(tt)} times)")
         if not j0 - sum(jj) > 0.0:
-            raise _bad("J0", self.J0, f"J(0+) = J0 - sum(J_i) = {j0 - sum(jj)!r} must be > 0 "
-                       "(a creep function starts at a positive instantaneous compliance)")
+            raise bad("J0", self.J0, f"J(0+) = J0 - sum(J_i) = {j0 - sum(jj)!r} must be > 0 "
+                      "(a creep function starts at a positive instantaneous compliance)")
         if self.ratio is not None:
-            r = float(self.ratio)
+            r = real("ratio", self.ratio, "the E∞/E0 of this series: use "
+                     "Prony.standard_linear_solid(ratio)")
             if (j0, jj, tt) != (1.0, (1.0 - 1.0 / r,), (1.0,)):
-                raise _bad("ratio", self.ratio, "the E∞/E0 of this series: use "
-                           "Prony.standard_linear_solid(ratio)")
+                raise bad("ratio", self.ratio, "the E∞/E0 of this series: use "
+                          "Prony.standard_linear_solid(ratio)")
             object.__setattr__(self, "ratio", r)
         object.__setattr__(self, "J0", j0)
         object.__setattr__(self, "J", jj)
@@ -92,12 +74,7 @@ class Prony:
         Units ``E_ref = E0``, ``tau_ref = tau``: ``J0 = 1``, ``J_1 = 1 - 1/ratio``,
         ``tau_1 = 1``.
         """
-        try:
-            r = float(ratio)
-        except (TypeError, ValueError):
-            raise _bad("ratio", ratio, "a finite E_inf/E0 >= 1") from None
-        if not math.isfinite(r) or r < 1.0:
-            raise _bad("ratio", ratio, "a finite E_inf/E0 >= 1")
+        r = real("ratio", ratio, "a finite E_inf/E0 >= 1", lambda v: v >= 1.0)
         return cls(1.0, (1.0 - 1.0 / r,), (1.0,), ratio=r)
 
     @property
@@ -235,12 +212,7 @@ class Sinusoid(_Profile):
     hk: float = 1.0
 
     def __post_init__(self):
-        try:
-            v = float(self.hk)
-        except (TypeError, ValueError):
-            raise _bad("hk", self.hk, "a finite amplitude hk > 0") from None
-        if not math.isfinite(v) or v <= 0.0:
-            raise _bad("hk", self.hk, "a finite amplitude hk > 0")
+        v = real("hk", self.hk, "a finite amplitude hk > 0", lambda v: v > 0.0)
         object.__setattr__(self, "hk", v)
 
     @property
@@ -274,14 +246,16 @@ class Harmonics(_Profile):
     phases: tuple = ()
 
     def __post_init__(self):
-        a = np.atleast_1d(np.asarray(self.amplitudes, dtype=float)).ravel()
-        p = np.atleast_1d(np.asarray(self.phases, dtype=float)).ravel()
-        if a.size == 0 or not _finite(a) or not np.any(a != 0.0):
-            raise _bad("amplitudes", self.amplitudes, "finite harmonic amplitudes, not all zero")
-        if p.size != a.size or not _finite(p):
-            raise _bad("phases", self.phases, f"{a.size} finite phases (one per amplitude)")
-        object.__setattr__(self, "amplitudes", tuple(float(v) for v in a))
-        object.__setattr__(self, "phases", tuple(float(v) for v in p))
+        allowed = "finite harmonic amplitudes, not all zero"
+        a = series("amplitudes", self.amplitudes, allowed)
+        if not any(v != 0.0 for v in a):
+            raise bad("amplitudes", self.amplitudes, allowed)
+        allowed = f"{len(a)} finite phases (one per amplitude)"
+        p = series("phases", self.phases, allowed)
+        if len(p) != len(a):
+            raise bad("phases", self.phases, allowed)
+        object.__setattr__(self, "amplitudes", a)
+        object.__setattr__(self, "phases", p)
 
     def _spectrum(self):
         n = np.arange(1, len(self.amplitudes) + 1, dtype=float)
@@ -311,16 +285,16 @@ class SampledProfile(_Profile):
     heights: np.ndarray = field(repr=False)
 
     def __post_init__(self):
-        arr = np.array(self.heights, dtype=float, copy=True)
+        arr = reals("heights", self.heights, "an array of k*y over one period")
         if arr.ndim != 1:
-            raise _bad("heights", f"<array of shape {arr.shape}>",
-                       "a one-dimensional array of k*y over one period")
+            raise bad("heights", f"<array of shape {arr.shape}>",
+                      "a one-dimensional array of k*y over one period")
         if arr.size < 8:
-            raise _bad("heights", f"<{arr.size} samples>", "at least 8 samples over one period")
-        if not _finite(arr):
-            raise _bad("heights", "<array with non-finite values>", "finite heights")
+            raise bad("heights", f"<{arr.size} samples>", "at least 8 samples over one period")
+        if not np.all(np.isfinite(arr)):
+            raise bad("heights", "<array with non-finite values>", "finite heights")
         if np.ptp(arr) == 0.0:
-            raise _bad("heights", "<constant array>", "a profile that is not flat")
+            raise bad("heights", "<constant array>", "a profile that is not flat")
         arr.flags.writeable = False
         object.__setattr__(self, "heights", arr)
 
@@ -348,18 +322,18 @@ def _rows(path, option) -> list[list[str]]:
     naming the file when it is binary, not UTF-8 or holds no data."""
     data = Path(path).read_bytes()
     if b"\0" in data:
-        raise _bad(option, str(path), "a UTF-8 text file (this one is binary: NUL bytes)")
+        raise bad(option, str(path), "a UTF-8 text file (this one is binary: NUL bytes)")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise _bad(option, str(path), f"a UTF-8 text file (byte {exc.start} is not UTF-8)") from None
+        raise bad(option, str(path), f"a UTF-8 text file (byte {exc.start} is not UTF-8)") from None
     rows = []
     for raw in text.lstrip("\ufeff").splitlines():
         line = raw.split("#", 1)[0].strip()
         if line:
             rows.append(line.replace(",", " ").split())
     if not rows:
-        raise _bad(option, str(path), "a file with data (this one is empty or only comments)")
+        raise bad(option, str(path), "a file with data (this one is empty or only comments)")
     return rows
 
 
@@ -370,9 +344,9 @@ def _numbers(option, path, tokens):
         try:
             v = float(t)
         except ValueError:
-            raise _bad(option, str(path), f"numeric fields ({t!r} is not a number)") from None
+            raise bad(option, str(path), f"numeric fields ({t!r} is not a number)") from None
         if not math.isfinite(v):
-            raise _bad(option, str(path), f"finite numbers ({t!r} is not finite)")
+            raise bad(option, str(path), f"finite numbers ({t!r} is not finite)")
         out.append(v)
     return out
 
@@ -405,22 +379,22 @@ def read_profile(path) -> SampledProfile:
     if not all(_is_number(t) for t in rows[0]):
         rows = rows[1:]
     if not rows:
-        raise _bad("profile", str(path), "a file with at least 8 samples of k*y")
+        raise bad("profile", str(path), "a file with at least 8 samples of k*y")
     width = {len(r) for r in rows}
     if len(width) != 1 or width.pop() not in (1, 2):
-        raise _bad("profile", str(path), "one column (k*y) or two columns (x_over_lambda, k*y) "
-                   "on every line")
+        raise bad("profile", str(path), "one column (k*y) or two columns (x_over_lambda, k*y) "
+                  "on every line")
     data = np.array([_numbers("profile", path, r) for r in rows])
     if data.shape[1] == 2:
         x = data[:, 0]
         m = x.size
         expected = np.arange(m) / m - 0.5
         if m >= 2 and abs(x[-1] - 0.5) < 1e-9 and abs(x[0] + 0.5) < 1e-9:
-            raise _bad("profile", str(path), "exactly one period: drop the repeated end point "
-                       "x_over_lambda = 0.5")
+            raise bad("profile", str(path), "exactly one period: drop the repeated end point "
+                      "x_over_lambda = 0.5")
         if not np.allclose(x, expected, rtol=0.0, atol=1e-9):
-            raise _bad("profile", str(path), "x_over_lambda = j/M - 1/2 for j = 0..M-1 "
-                       "(one period, equally spaced, starting at -0.5)")
+            raise bad("profile", str(path), "x_over_lambda = j/M - 1/2 for j = 0..M-1 "
+                      "(one period, equally spaced, starting at -0.5)")
         data = data[:, 1]
     else:
         data = data[:, 0]
@@ -447,13 +421,13 @@ def read_prony(path) -> Prony:
     """
     rows = _rows(path, "prony")
     if rows[0][0].lower() in ("e_r", "er"):  # the relaxation twin of this format
-        raise _bad("prony", str(path), "a creep series (first line 'J0 <value>'); this is a "
-                   "relaxation series (first line 'E_r'): convert it exactly with "
-                   "viscosine.materials.read_relaxation(path).creep(), or give it to --material")
+        raise bad("prony", str(path), "a creep series (first line 'J0 <value>'); this is a "
+                  "relaxation series (first line 'E_r'): convert it exactly with "
+                  "viscosine.materials.read_relaxation(path).creep(), or give it to --material")
     if rows[0][0].lower() != "j0" or len(rows[0]) != 2:
-        raise _bad("prony", str(path), "a first line 'J0 <value>' then lines 'J_i tau_i'")
+        raise bad("prony", str(path), "a first line 'J0 <value>' then lines 'J_i tau_i'")
     if any(len(r) != 2 for r in rows[1:]):
-        raise _bad("prony", str(path), "exactly two numbers 'J_i tau_i' per term line")
+        raise bad("prony", str(path), "exactly two numbers 'J_i tau_i' per term line")
     (j0,) = _numbers("prony", path, rows[0][1:])
     terms = [tuple(_numbers("prony", path, r)) for r in rows[1:]]
     return Prony(j0, tuple(t[0] for t in terms), tuple(t[1] for t in terms))

@@ -11,12 +11,13 @@ from __future__ import annotations
 import warnings
 
 from viscosine import DEFAULT_RTOL, ViscosineWarning
+from viscosine._checks import bad, positive_int, real
 
-from ._accepted import MAX_NODES, _check_positive_int, _check_real, validate
+from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._assemble import build_result
 from ._estimate import _estimate, _level_scalars, _met
 from ._grid import START_NODES, _Grid, _solve_one
-from ._inputs import Prony, Sinusoid, _bad
+from ._inputs import Prony, Sinusoid
 from ._result import CONVERGED, STATUS_TARGET, BemResult
 from ._window import _window_refine, _window_wanted
 
@@ -80,7 +81,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     rtol : float, optional
         Adaptive mesh only: the target of the estimated errors, relative for Delta/h and mu,
         absolute for ka and ke (the contact fraction times pi with several patches).
-        Default 1e-6.
+        Default ``viscosine.DEFAULT_RTOL`` (1e-6).
     max_nodes : int, optional
         Adaptive mesh only: the largest periodic grid (a power of two, up to
         ``bem.MAX_NODES``); default ``bem.MAX_NODES`` (2^24, or less where memory is smaller).
@@ -118,8 +119,10 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     Eq. (2.2)-(2.5) (operator), (3.1) (friction), Appendix B (full contact).
     """
     if (load is None) == (penetration is None):
-        raise _bad("load", load, "exactly one of load and penetration "
-                   f"(got load={load!r}, penetration={penetration!r})")
+        raise bad("load", load, "exactly one of load and penetration "
+                  f"(got load={load!r}, penetration={penetration!r})")
+    if speed is None:
+        raise bad("speed", speed, ACCEPTED["speed"][2])
     validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
              profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes)
     # validate has refused everything outside bem.ACCEPTED (and conflicting options)
@@ -131,20 +134,20 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     load = None if load is None else float(load)
     penetration = None if penetration is None else float(penetration)
     if nodes is not None:
-        nodes = _check_positive_int("nodes", nodes, 8)
+        nodes = positive_int("nodes", nodes, 8)
         for name, v in (("rtol", rtol), ("max_nodes", max_nodes)):
             if v is not None:
-                raise _bad(name, v, f"nothing with nodes={nodes}: {name} steers the adaptive "
-                           "mesh (nodes=None)")
+                raise bad(name, v, f"nothing with nodes={nodes}: {name} steers the adaptive "
+                          "mesh (nodes=None)")
     else:
         if nested is not True:
-            raise _bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
+            raise bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
         rtol = DEFAULT_RTOL if rtol is None else float(rtol)
         max_nodes = ADAPTIVE_MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
-    tol = _check_real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2)
-    max_outer = _check_positive_int("max_outer", max_outer, 1)
-    restart = _check_positive_int("restart", restart, 1)
-    max_inner = _check_positive_int("max_inner", max_inner, 1)
+    tol = real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2)
+    max_outer = positive_int("max_outer", max_outer, 1)
+    restart = positive_int("restart", restart, 1)
+    max_inner = positive_int("max_inner", max_inner, 1)
 
     amp = float(profile.amplitude)
     control, asked = ("load", load) if load is not None else ("penetration", penetration)

@@ -1,8 +1,9 @@
 """The comparison layer: the only package that imports both roads.
 
-`python -m comparisons point|sweep|report|crosscheck|bench|suite|verify` (see `cli.py`): the
-cross-validation report, convergence studies, benchmarks, the certified benchmark suite, the
-verification of another code's results and a third code driven as a peer (`peers/`).
+`python -m comparisons point|sweep|report|crosscheck|bench|suite|verify|mastercurve` (see
+`cli/`): the cross-validation report, convergence studies, benchmarks (`bench/`), the certified
+benchmark suite, the verification of another code's results and a third code driven as a peer
+(`peers/`).
 Operating points cross between the roads as plain dimensionless numbers (units, signs and keys of
 `docs/conventions.md`), never as shared objects.
 

@@ -35,19 +35,24 @@ import math
 
 import numpy as np
 
+from viscosine._checks import bad, real, reals
+
+from . import roads
+
 
 def _terms(J0, terms):
-    j0 = float(J0)
-    tt = [(float(j), float(t)) for j, t in terms]
-    if not (math.isfinite(j0) and j0 > 0.0):
-        raise ValueError(f"J0={J0!r} is not allowed: a finite compliance > 0")
+    j0 = real("J0", J0, "a finite compliance > 0", lambda v: v > 0.0)
+    allowed = "pairs (J_i >= 0, tau_i > 0)"
+    arr = reals("terms", terms, allowed)
+    if arr.size and (arr.ndim != 2 or arr.shape[1] != 2):
+        raise bad("terms", terms, allowed)
+    tt = [(j, t) for j, t in arr.reshape(-1, 2).tolist()]
     for j, t in tt:
         if not (math.isfinite(j) and j >= 0.0 and math.isfinite(t) and t > 0.0):
-            raise ValueError(f"terms={terms!r} is not allowed: pairs (J_i >= 0, tau_i > 0)")
+            raise bad("terms", terms, allowed)
     jplus = j0 - sum(j for j, _ in tt)
     if not jplus > 0.0:
-        raise ValueError(f"terms={terms!r} is not allowed: J(0+) = J0 - sum J_i = {jplus!r} "
-                         "must be > 0")
+        raise bad("terms", terms, f"J(0+) = J0 - sum J_i = {jplus!r} must be > 0")
     return j0, tt, jplus
 
 
@@ -150,9 +155,9 @@ def plot_material(ax, J0, terms, *, speeds=(), speeds_label="sliding frequencies
 
 def prony_numbers(path):
     """(J0, [(J_i, τ_i), ...]) of a Prony file, read by the BEM road's own reader
-    (:func:`bem.read_prony`: the one definition of the format) and passed on as plain numbers."""
-    import bem
-    p = bem.read_prony(path)
+    (:func:`bem.read_prony`, through `comparisons.roads`: the one definition of the format) and
+    passed on as plain numbers."""
+    p = roads.read_prony(path)
     return float(p.J0), [(float(j), float(t)) for j, t in zip(p.J, p.tau)]
 
 

@@ -1,10 +1,15 @@
 """Files written so that an interrupted run never leaves half of one: the one atomic writer of
-text (UTF-8, '\\n' line ends, whatever the locale)."""
+text (UTF-8, '\\n' line ends, whatever the locale); the checks, before any work, that an output
+file or folder can be written; one line on standard error."""
 from __future__ import annotations
 
 import os
 import secrets
+import stat
+import sys
 from pathlib import Path
+
+from ._errors import BadInput
 
 
 def temporary_name(path) -> str:
@@ -26,3 +31,58 @@ def write_text(path, text: str) -> None:
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def stderr(text) -> None:
+    """One line (or more) on standard error, at once."""
+    print(text, file=sys.stderr, flush=True)
+
+
+def check_output_file(option, path) -> None:
+    """An output file must be creatable: its folder exists, and it is not a folder/device/FIFO.
+
+    Raises
+    ------
+    BadInput
+        naming ``option`` and ``path``.
+    """
+    if path == "":
+        raise BadInput(f"{option} '' is not allowed: the name of a file")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise BadInput(f"{option} {path}: the folder {folder} does not exist")
+    if os.path.lexists(path):
+        st = os.stat(path) if os.path.exists(path) else os.lstat(path)
+        if not stat.S_ISREG(st.st_mode):
+            from .runner import _kind
+            raise BadInput(f"{option} {path}: {_kind(st.st_mode)}, not a regular file")
+    if not os.access(folder, os.W_OK | os.X_OK):
+        raise BadInput(f"{option} {path}: the folder {folder} is not writable")
+
+
+def check_output_dir(option, path, create) -> None:
+    """An output folder: an existing folder, or (create) one whose parent exists.
+
+    Raises
+    ------
+    BadInput
+        naming ``option`` and ``path``.
+    """
+    if path == "":
+        raise BadInput(f"{option} '' is not allowed: the name of a folder")
+    if os.path.exists(path):
+        if not os.path.isdir(path):
+            raise BadInput(f"{option} {path}: an existing file, not a folder")
+    else:
+        parent = os.path.dirname(os.path.abspath(path))
+        if not os.path.isdir(parent):
+            raise BadInput(f"{option} {path}: the folder {parent} does not exist")
+        if not os.access(parent, os.W_OK | os.X_OK):  # it could not be made there
+            raise BadInput(f"{option} {path}: the folder {parent} is not writable")
+        if create:
+            try:
+                os.mkdir(path)
+            except OSError as exc:
+                raise BadInput(f"{option} {path}: cannot create the folder ({exc.strerror})") from None
+    if os.path.isdir(path) and not os.access(path, os.W_OK | os.X_OK):
+        raise BadInput(f"{option} {path}: the folder is not writable")

@@ -40,6 +40,8 @@ import math
 import os
 from typing import NamedTuple
 
+from . import roads
+
 TIME_UNIT_SLS = ("speed = V tau_ref k with tau_ref = tau, the creep (retardation) time of the "
                  "standard linear solid (eq. 2.3); its relaxation time is tau E0/Einf = "
                  "tau/ratio")
@@ -118,7 +120,6 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     ValueError
         One line naming the option, the file and what is allowed.
     """
-    import bem
     from viscosine import materials as vm
 
     from .runner import file_bytes
@@ -142,13 +143,13 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     fit_info = None
     try:
         if form == "creep":
-            prony = bem.read_prony(path)
+            prony = roads.read_prony(path)
             model = None
             terms = len(prony.J)
             e_ref = 1.0
             if si:  # compliances in 1/Pa: units of the relaxed modulus 1/J0
                 e_ref = 1.0 / prony.J0
-                prony = bem.Prony(1.0, tuple(j * e_ref for j in prony.J), prony.tau)
+                prony = roads.prony(1.0, tuple(j * e_ref for j in prony.J), prony.tau)
         else:
             if form == "relaxation":
                 model = vm.read_relaxation(path)
@@ -158,7 +159,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
                     model = model.in_pascals()
             terms = len([e for e in model.E if e > 0.0])
             e_ref = model.E_r if (form == "dma" or si) else 1.0
-            prony = bem.Prony(*model.creep(E_ref=e_ref, tau_ref=1.0))
+            prony = roads.prony(*model.creep(E_ref=e_ref, tau_ref=1.0))
             fit_info = _fit_info(model)
     except ValueError as exc:
         raise ValueError(f"{where}: {_why(exc)}") from None
@@ -196,7 +197,6 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
     ValueError
         ``--temperature T is not allowed: ...``: outside a shift table, at or below the WLF pole.
     """
-    import bem
     try:
         log_a = float(shift.log10_aT(temperature)) + 0.0  # -0.0 at T_ref reads 0.0
     except ValueError as exc:
@@ -206,10 +206,10 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
     model = m.model
     if model is None:
         p = m.prony
-        prony = bem.Prony(p.J0, p.J, tuple(t * a for t in p.tau))
+        prony = roads.prony(p.J0, p.J, tuple(t * a for t in p.tau))
     else:
         model = model.at_temperature(shift, temperature)
-        prony = bem.Prony(*model.creep(E_ref=m.info["E_ref"] or 1.0, tau_ref=1.0))
+        prony = roads.prony(*model.creep(E_ref=m.info["E_ref"] or 1.0, tau_ref=1.0))
     info = {**m.info, "temperature": float(temperature), "shift": shift_info,
             "log10_aT": log_a, "fit": _fit_info(model) if model is not None else None}
     return Material(info, prony, model)
@@ -218,7 +218,6 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
 def from_model(model) -> Material:
     """A `viscosine.materials.Maxwell` (moduli in Pa, times in s; a DMA fit in the unit its data
     named) as the material of an SI problem: E_ref its relaxed modulus, tau_ref 1 s."""
-    import bem
     from viscosine import materials as vm
     if not isinstance(model, vm.Maxwell):
         raise ValueError(f"material={model!r} is not allowed: a file name or a "
@@ -236,7 +235,7 @@ def from_model(model) -> Material:
             **references(form, True, model.E_r, fit_info),
             "temperature": model.temperature, "shift": None, "log10_aT": None,
             "fit": fit_info, "units": "SI"}
-    return Material(info, bem.Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model)
+    return Material(info, roads.prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model)
 
 
 def _fit(vm, curve, bound, per_decade):

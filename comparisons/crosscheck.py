@@ -17,9 +17,7 @@ import sys
 from decimal import ROUND_CEILING, ROUND_FLOOR, ROUND_HALF_EVEN, Context
 from typing import NamedTuple
 
-import analytic
-
-from . import runner
+from . import roads, runner
 
 # (label, load, speed, ratio, hk); loads given as a fraction of p̃FC(V) where marked 'fc'
 GRID = [
@@ -103,7 +101,7 @@ TOLERANCES = _tolerances(_WORST)
 
 def _load(load, speed, ratio, hk):
     if isinstance(load, tuple):
-        return load[1] * analytic.transition_load(speed, ratio, hk)
+        return load[1] * roads.transition_load(speed, ratio, hk)
     return load
 
 
@@ -120,7 +118,7 @@ def differences(nodes, grid=GRID, run=runner.run):
     """
     rows = []
     for (label, *_), spec in zip(grid, specs(nodes, grid)):
-        ref = analytic.solve(load=spec["load"], speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"]).as_dict()
+        ref = roads.analytic_solution(spec).as_dict()
         out = run(spec)
         diff = {}
         if out["ok"]:

@@ -43,7 +43,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ._io import write_text
+from ._errors import BadInput
+from ._io import check_output_dir, stderr, write_text
 
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
 DEFAULT_RTOL = 1e-3
@@ -211,17 +212,16 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
     Returns ``([(T, V, log10 a_T, spec), ...], parameters)``; raises ValueError (one line).
     """
     from viscosine import materials as vm
+    from viscosine._checks import real
 
     from . import _materials, runner
-    temps = [float(t) for t in temperatures]
-    vs = [float(v) for v in speeds]
+    temps = [real("temperature", t, "a finite temperature") for t in temperatures]
+    vs = [real("speed", v, "a finite sliding speed > 0", lambda x: x > 0.0, unit="m/s")
+          for v in speeds]
     if not temps:
         raise ValueError("temperatures=[] is not allowed: at least one temperature")
     if not vs:
         raise ValueError("speeds=[] is not allowed: at least one speed [m/s]")
-    for v in vs:
-        if not (math.isfinite(v) and v > 0.0):
-            raise ValueError(f"speed={v!r} is not allowed: a finite sliding speed > 0 [m/s]")
     if not isinstance(shift, (vm.WLF, vm.ShiftTable)):
         raise ValueError(f"shift={shift!r} is not allowed: a viscosine.materials.WLF or "
                          "ShiftTable (a_T of the material's times)")
@@ -388,67 +388,37 @@ def write_figure(path_png, table):
     return path_png
 
 
-# ------------------------------------------------------------------------------ command line
-def add_parser(sub):
-    """Register ``mastercurve`` on the subparsers ``sub`` of the command line."""
-    from .cli import _Once, _integer, _number, log_range
-    p = sub.add_parser("mastercurve", help="friction master curve μ(V) at several temperatures "
-                                           "(SI; figure, CSV and JSON)",
-                       description="Solve μ at every (temperature, speed) of a material through "
-                                   "the boundary-element road and write points.csv (each point "
-                                   "as it is done), mastercurve.json and mastercurve.png.  SI "
-                                   "units; see docs/materials.md.")
-    p.add_argument("--material", required=True, action=_Once, metavar="FILE",
-                   help="a creep or relaxation series (Pa, s) or a DMA master curve (CSV, its "
-                        "header naming the modulus unit), at the shift's reference temperature")
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--wlf", type=_number, nargs=3, action=_Once, metavar=("C1", "C2", "TREF"),
-                   help="WLF shift log10 a_T = -C1 (T - TREF)/(C2 + T - TREF)")
-    g.add_argument("--shift-table", action=_Once, metavar="FILE",
-                   help="shift table CSV (columns temperature, log_aT); T outside it is refused")
-    p.add_argument("--temperatures", type=_number, nargs="+", required=True, action=_Once,
-                   metavar="T", help="temperatures, in the unit of the shift")
-    p.add_argument("--speeds", type=log_range, nargs="+", required=True, action=_Once,
-                   metavar="V", help="sliding speeds V [m/s] (values, or log ranges "
-                                     "START:STOP:COUNT)")
-    p.add_argument("--load", type=_number, required=True, action=_Once, metavar="P",
-                   help="mean pressure p∞ [Pa]")
-    p.add_argument("--wavelength", type=_number, required=True, action=_Once, metavar="L",
-                   help="λ of the rigid sinusoid [m]")
-    p.add_argument("--amplitude", type=_number, required=True, action=_Once, metavar="H",
-                   help="h of the rigid sinusoid [m]")
-    p.add_argument("--nu", type=_number, required=True, action=_Once, metavar="NU",
-                   help="Poisson's ratio")
-    m = p.add_mutually_exclusive_group()
-    m.add_argument("--nodes", type=_integer, action=_Once, metavar="N",
-                   help="a fixed mesh of N panels per period (default: adaptive)")
-    m.add_argument("--rtol", type=_number, action=_Once, metavar="R",
-                   help=f"accuracy of the adaptive mesh (default {DEFAULT_RTOL:g})")
-    p.add_argument("--max-residual", type=_number, action=_Once, metavar="B",
-                   help="DMA: the largest relative residual of the Prony fit (default 0.05)")
-    p.add_argument("--per-decade", type=_number, action=_Once, metavar="K",
-                   help="DMA: relaxation times per decade of the fit (default 2)")
-    p.add_argument("--out", action=_Once, metavar="DIR",
-                   help="output folder (default ./mastercurve); a run's points.csv there is "
-                        "continued when its parameters are the same")
-    return p
+# ------------------------------------------------------------------------------ into a folder
+def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, speeds,
+                mean_pressure, wavelength, amplitude, nu, nodes=None, rtol=None,
+                max_residual=None, per_decade=None) -> int:
+    """`python -m comparisons mastercurve`: check every input, then solve every point into the
+    folder ``out`` (made when missing): ``points.csv`` continued when it holds a run with the
+    same parameters, then ``mastercurve.json`` and ``mastercurve.png``; progress on standard
+    error.  ``wlf`` (C1, C2, TREF) or ``shift_table`` (a file) is the shift; the other keywords
+    are `prepare`'s (``rtol`` default `DEFAULT_RTOL`).
 
+    Returns
+    -------
+    int
+        The points that could not be solved.
 
-def main(args) -> int:
-    """Run ``mastercurve``: 0 every point solved, 1 some could not be, 2 bad input."""
+    Raises
+    ------
+    comparisons._errors.BadInput
+        Bad input, before any point is solved, in one line naming the command line's option.
+    """
     from . import _materials
-    from .cli import EXIT_FAILED, EXIT_OK, BadInput, _check_output_dir, _stderr
 
-    out = "mastercurve" if args.out is None else args.out
-    _check_output_dir("--out", out, create=False)
+    check_output_dir("--out", out, create=False)
     try:
-        shift, shift_info = _materials.shift_from_options(args.wlf, args.shift_table)
+        shift, shift_info = _materials.shift_from_options(wlf, shift_table)
         plan, parameters = prepare(
-            args.material, shift=shift, shift_info=shift_info, temperatures=args.temperatures,
-            speeds=args.speeds, mean_pressure=args.load, wavelength=args.wavelength,
-            amplitude=args.amplitude, nu=args.nu, nodes=args.nodes,
-            rtol=DEFAULT_RTOL if args.rtol is None else args.rtol,
-            max_residual=args.max_residual, per_decade=args.per_decade)
+            material, shift=shift, shift_info=shift_info, temperatures=temperatures,
+            speeds=speeds, mean_pressure=mean_pressure, wavelength=wavelength,
+            amplitude=amplitude, nu=nu, nodes=nodes,
+            rtol=DEFAULT_RTOL if rtol is None else rtol,
+            max_residual=max_residual, per_decade=per_decade)
     except ValueError as exc:  # InputError too
         text = str(exc).strip().splitlines()[0]
         for name, option in (("--speed ", "--speeds "), ("speed=", "--speeds "),
@@ -459,7 +429,7 @@ def main(args) -> int:
                 text = option + text[len(name):]
                 break
         raise BadInput(text) from None
-    _check_output_dir("--out", out, create=True)
+    check_output_dir("--out", out, create=True)
     csv_path = os.path.join(out, "points.csv")
     line = _parameters_line(parameters)
     old_params, done = read_points(csv_path)
@@ -481,8 +451,8 @@ def main(args) -> int:
         what = (f"mu = {row['mu']:.6g}" if row["success"] else f"FAILED: {row['message']}")
         extra = " (extrapolated)" if row["extrapolated"] else ""
         how = "from points.csv" if reused else f"{row['seconds']:.2f} s"
-        _stderr(f"mastercurve: {i + 1}/{total} T = {row['temperature']:g}, V = "
-                f"{row['speed']:.4g} m/s: {what}{extra} ({how}; {time.monotonic() - t0:.1f} s)")
+        stderr(f"mastercurve: {i + 1}/{total} T = {row['temperature']:g}, V = "
+               f"{row['speed']:.4g} m/s: {what}{extra} ({how}; {time.monotonic() - t0:.1f} s)")
 
     table = solve(plan, parameters, done=done, on_point=on_point)
     total = len(plan)
@@ -492,9 +462,9 @@ def main(args) -> int:
                   json.dumps(_json_safe(doc), indent=1, allow_nan=False) + "\n")
     if table.success.any():
         write_figure(os.path.join(out, "mastercurve.png"), table)
-    _stderr(f"mastercurve: {total - failed}/{total} points in {time.monotonic() - t0:.1f} s; "
-            f"wrote {csv_path}, mastercurve.json" + (", mastercurve.png"
-                                                     if table.success.any() else ""))
+    stderr(f"mastercurve: {total - failed}/{total} points in {time.monotonic() - t0:.1f} s; "
+           f"wrote {csv_path}, mastercurve.json" + (", mastercurve.png"
+                                                    if table.success.any() else ""))
     if failed:
-        _stderr(f"mastercurve: {failed} of {total} points could not be solved")
-    return EXIT_FAILED if failed else EXIT_OK
+        stderr(f"mastercurve: {failed} of {total} points could not be solved")
+    return failed

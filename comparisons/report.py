@@ -33,10 +33,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-import analytic
 from viscosine import Fields
 
-from . import _html, crosscheck, runner
+from . import _html, crosscheck, gate, roads, runner
 from ._io import write_text
 from .convergence import observed_order
 from .convergence import richardson as _richardson
@@ -249,7 +248,7 @@ def run_tamaas(spec):
         res = peer.solve(load=spec["load"], speed=spec["speed"], ratio=spec["ratio"],
                          hk=spec["hk"], nodes=spec["nodes"], dt=dt)
         rec = res.as_dict()
-        why = runner.check_record(rec, spec)
+        why = gate.check_record(rec, spec)
     except Exception as exc:  # a failure of the third code is this run's result
         text = str(exc).strip().splitlines()
         rec, why = None, f"{type(exc).__name__}: {text[0] if text else 'Tamaas failed'}"
@@ -320,8 +319,8 @@ def _tamaas_version():
 
 # ---------------------------------------------------------------------------- analytic curves
 def _solve(load=None, speed=1.0, pen=None):
-    sol = analytic.solve(load=load, speed=speed, ratio=RATIO, hk=HK) if pen is None else \
-        analytic.solve(penetration=pen, speed=speed, ratio=RATIO, hk=HK)
+    control = {"load": load} if pen is None else {"penetration": pen}
+    sol = roads.analytic_solution({**control, "speed": speed, "ratio": RATIO, "hk": HK})
     if not sol.success:
         raise RuntimeError(f"semi-analytic solver failed at load={load}, Δ={pen}, V={speed}: "
                            f"{sol.message} {sol.residuals}")
@@ -415,7 +414,7 @@ def fig7(ax, store, cfg):
 
 
 def fig8(ax, store, cfg):
-    ax.plot(SPEED_CURVE, [analytic.transition_load(s, RATIO, HK) for s in SPEED_CURVE], "k-",
+    ax.plot(SPEED_CURVE, [roads.transition_load(s, RATIO, HK) for s in SPEED_CURVE], "k-",
             lw=1.2, label="semi-analytic |E(kV)| hk/(2E0)")
     xs, ys = [], []
     for s in cfg.speeds_bem:  # BEM: in full contact p̃FC = p̃∞ − min σ (the problem is linear)
@@ -460,7 +459,7 @@ def _ecc(ax, store, cfg, load, title):
             "o", ms=4, color="C0", mfc="none", label="BEM ke")
     ax.plot([d["speed"] for d in pts], [d["ke_hat"] for d in pts], "s", ms=4, color="C3", mfc="none",
             label="BEM kê")
-    vth = analytic.threshold_speed(load, RATIO, HK)
+    vth = roads.threshold_speed(load, RATIO, HK)
     if 0 < vth < math.inf:
         ax.axvline(vth, ls=":", color="0.5")
     _style(ax, "V/V0", "ke, kê", title, logx=True)
@@ -932,21 +931,28 @@ def write_report(folder, store, cfg, timings, failures, where=None):
     return conv
 
 
-def main(args):
+def build(out, *, quick=False, workers=None, resume=False, scheduler=None) -> int:
+    """Run what the report needs (`execute`) and write it into the folder ``out``.
+
+    Returns
+    -------
+    int
+        The runs that failed (each named in the report).
+    """
     t0 = time.monotonic()
-    cfg = config(args.quick, args.workers)
-    os.makedirs(args.out, exist_ok=True)
-    store = Store(os.path.join(args.out, "results"))
-    seconds, where = execute(cfg, store, args.resume, getattr(args, "scheduler", None))
+    cfg = config(quick, workers)
+    os.makedirs(out, exist_ok=True)
+    store = Store(os.path.join(out, "results"))
+    seconds, where = execute(cfg, store, resume, scheduler)
     timings = {"runs (wall)": seconds}
     failures = [(spec, doc["error"]) for spec, _ in runs(cfg)
                 for doc in [store.get(spec)] if not doc["ok"]]
     print("report: figures and tables", file=sys.stderr)
-    write_report(args.out, store, cfg, timings, failures, where)
-    print(f"report: wrote {os.path.join(args.out, 'report.md')} and report.html in "
+    write_report(out, store, cfg, timings, failures, where)
+    print(f"report: wrote {os.path.join(out, 'report.md')} and report.html in "
           f"{time.monotonic() - t0:.0f} s", file=sys.stderr)
     if not tamaas_installed():
         print("report: without the Tamaas section (the third code is not installed; from a "
               "clone: pip install '.[peers]', then the same command with --resume)",
               file=sys.stderr)
-    return 1 if failures else 0
+    return len(failures)

@@ -17,12 +17,12 @@ and are never recorded.
   accepted ranges) and raises :class:`InputError` (exit status 2).
 - :func:`run` solves one spec and returns a plain dict ``{"ok", "kind", "record", "error",
   "warnings", "fields", "spec", "seconds"}``; it never raises for a failing solve: any exception,
-  an unconverged result or a result that fails :func:`check_record` is ``ok = False`` with a
-  one-line ``error``.
+  an unconverged result or a result that fails the last line of defence
+  (`comparisons.gate.check_record`) is ``ok = False`` with a one-line ``error``.
 
-Each road is reached through one adapter (:func:`_analytic`, :func:`_bem`) that returns the
-road's JSON record (``result.as_dict()``), its fields and the constraint figures the last line of
-defence checks.
+Each road is reached through one adapter of `comparisons.roads` (``analytic_record``,
+``bem_record``) that returns the road's JSON record (``result.as_dict()``), its fields and the
+constraint figures the last line of defence checks.
 """
 from __future__ import annotations
 
@@ -34,23 +34,21 @@ import secrets
 import stat
 import time
 import warnings as _warnings
-from typing import NamedTuple
 
 import numpy as np
 
 import viscosine
 from viscosine import Fields, ViscosineWarning
-from viscosine._protocol import SCALAR_KEYS
+
+from . import roads
+from .gate import check_record
+from .gate import one_line as _one_line  # also the command line's one-line refusals
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
 #: viscosine.DEFAULT_RTOL, the one value both read)
 DEFAULTS = {"ratio": 3.0, "hk": 1.0, "rtol": viscosine.DEFAULT_RTOL, "field_points": 1024}
 #: points of the analytic fields (--nodes with --fields): 8 … 2^20 (about 10 µs per point)
 FIELD_POINTS = (8, 2 ** 20)
-#: the last line of defence: round-off allowances of the physical checks
-RANGE_ROUNDOFF = 1e-12     # Δ/h ≤ 1, ka ≤ π, contact fraction ≤ 1, μ ≥ 0, τf ≥ 0
-CONSTRAINT_ROUNDOFF = 1e-8  # σ ≥ 0 (over max σ), gap ≥ 0 (over h): the solvers' own tolerances
-CONTROL_MISMATCH = 1e-6    # achieved load (or Δ/h) against the one asked for, and mean σ = load
 
 SPEC_KEYS = ("solver", "load", "penetration", "speed", "ratio", "hk", "nodes", "rtol", "max_nodes",
              "profile", "prony", "field_points")
@@ -212,7 +210,6 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
         named by the option the user typed.
     """
     from viscosine import _si
-    road = _road_module(solver)
     given = {k: v for k, v in si.items() if v is not None}
     need = ["nu", "wavelength", "amplitude"]
     if material is None:
@@ -244,8 +241,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
                                          nu=given["nu"], wavelength=given["wavelength"],
                                          amplitude=given["amplitude"], speed=speed,
                                          **{control: value})
-            groups = _si.groups(sc, road.validate, road.ACCEPTED,
-                                with_hk=("load",) if solver == "bem" else ())
+            groups = roads.si_groups(solver, sc)
         except ValueError as exc:
             raise InputError(_si_option_names(_one_line(exc))) from None
         return sc, groups
@@ -262,11 +258,6 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
                  "load_is": "p_inf (1 - nu^2)/E_ref, p_inf the --load [Pa]",
                  "speed_is": "V tau_ref k, V the --speed [m/s], k = 2 pi/wavelength"}
     return out
-
-
-def _road_module(solver):
-    import importlib
-    return importlib.import_module(solver)
 
 
 def _si_option_names(text):
@@ -328,16 +319,16 @@ def read_input(option, path):
     """Read a --profile or --prony file: ``({"path", "sha256"}, parsed object)``.
 
     The file must be a regular UTF-8 text file; the parsing is the BEM's own
-    (`bem.read_profile`, `bem.read_prony`).  Every refusal names the option and the file.
+    (`bem.read_profile`, `bem.read_prony`, through `comparisons.roads`).  Every refusal names
+    the option and the file.
 
     Raises
     ------
     InputError
     """
-    import bem
     where = f"--{option} {path}"
     data = file_bytes(f"--{option}", path)
-    reader = bem.read_profile if option == "profile" else bem.read_prony
+    reader = roads.read_profile if option == "profile" else roads.read_prony
     try:
         obj = reader(path)
     except (ValueError, UnicodeDecodeError, OSError) as exc:
@@ -389,28 +380,22 @@ def _kind(mode):
     return "not a regular file"
 
 
-def _one_line(exc):
-    text = str(exc).strip().splitlines()
-    return text[0] if text else type(exc).__name__
-
-
 # ------------------------------------------------------------------------------ validation
 def validate(spec):
     """Check a spec before any work; raise InputError naming the input and what is allowed.
 
-    The accepted ranges are the roads' own (`analytic.validate`, `bem.validate`); the command
-    line adds only the limits of its own options (mesh cap, points of the fields).
+    The accepted ranges are the roads' own (`analytic.validate`, `bem.validate`, through
+    `comparisons.roads`); the command line adds only the limits of its own options (mesh cap,
+    points of the fields).
     """
     try:
         if spec["solver"] == "analytic":
-            import analytic
-            analytic.validate(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"],
-                              hk=spec["hk"])
+            roads.validate_analytic(spec)
             n = spec.get("field_points")
             if n is not None:
                 _check_int("nodes", n, *FIELD_POINTS, "points of the written fields")
         elif spec["solver"] == "bem":
-            _validate_bem(spec)
+            roads.validate_bem(spec, _bem_problem(spec))
         else:
             raise InputError(f"solver={spec['solver']!r} is not allowed: analytic or bem")
     except InputError:
@@ -419,43 +404,28 @@ def validate(spec):
         raise InputError(_one_line(exc)) from None
 
 
-def _controls(spec):
-    if spec.get("load") is not None:
-        return {"load": spec["load"]}
-    return {"penetration": spec.get("penetration")}
-
-
 def _check_int(name, value, low, high, what):
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
-        raise InputError(f"{name}={value!r} is not allowed: an integer in [{low}, {high}] ({what})")
-
-
-def _validate_bem(spec):
-    import bem
-    kw = dict(_controls(spec), speed=spec["speed"])
-    kw.update(_bem_problem(spec))
-    for name in ("nodes", "rtol", "max_nodes"):
-        if spec.get(name) is not None:
-            kw[name] = spec[name]
-    bem.validate(**kw)
+    from viscosine._checks import integer
+    try:
+        integer(name, value, f"an integer in [{low}, {high}] ({what})", lambda v: low <= v <= high)
+    except ValueError as exc:
+        raise InputError(str(exc)) from None
 
 
 def _bem_problem(spec):
-    """profile=/hk= and material=/ratio= for bem.solve (parsed files travel in the spec)."""
-    kw = {}
+    """``(profile, material)`` of a BEM spec: its parsed profile and creep series (carried in
+    the spec, else read again), None for the sinusoid of ``hk`` and the standard linear solid
+    of ``ratio``."""
+    profile = material = None
     if spec.get("profile") is not None:
         obj = spec.get("_profile")
-        kw["profile"] = obj if obj is not None else read_input("profile", spec["profile"]["path"])[1]
-    else:
-        kw["hk"] = spec["hk"]
+        profile = obj if obj is not None else read_input("profile", spec["profile"]["path"])[1]
     if spec.get("prony") is not None:
         obj = spec.get("_prony")
-        kw["material"] = obj if obj is not None else read_input("prony", spec["prony"]["path"])[1]
+        material = obj if obj is not None else read_input("prony", spec["prony"]["path"])[1]
     elif spec.get("material") is not None:
-        kw["material"] = _material(spec).prony
-    else:
-        kw["ratio"] = spec["ratio"]
-    return kw
+        material = _material(spec).prony
+    return profile, material
 
 
 def _material(spec):
@@ -484,155 +454,6 @@ def describe_material(spec):
     else:
         info = _materials.sls_description(spec.get("ratio"))
     return info, info.pop("time_unit")
-
-
-# ------------------------------------------------------------------------------ the roads
-class Solved(NamedTuple):
-    """What an adapter returns: the road's JSON record, its fields, its constraint figures."""
-
-    record: dict
-    fields: Fields | None
-    constraints: dict | None  # min_pressure (over a pressure scale), min_gap (over h), mean_pressure_error
-
-
-def _analytic(spec, want_fields, deep):
-    """Adapter of the semi-analytic road (``analytic.solve`` → record, fields, constraints)."""
-    import analytic
-    sol = analytic.solve(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"])
-    rec = sol.as_dict()
-    if not sol.success:
-        return Solved(rec, None, None)
-    f = None
-    if want_fields:
-        n = spec.get("field_points") or DEFAULTS["field_points"]
-        f = sol.fields(np.arange(n) / n - 0.5)
-    c = None
-    if deep:  # graded quadrature of the fields: exact constraints, a few ms
-        chk = sol.check()
-        c = {"min_pressure": chk.get("min_pressure", chk.get("min_pressure_over_load")),
-             "min_gap": chk["min_gap"], "mean_pressure_error": chk["mean_pressure_error"]}
-    return Solved(rec, f, c)
-
-
-def _bem(spec, want_fields, deep):
-    """Adapter of the BEM road (``bem.solve`` → record, fields, constraints)."""
-    import bem
-    kw = dict(_controls(spec), speed=spec["speed"])
-    kw.update(_bem_problem(spec))
-    for name in ("nodes", "rtol", "max_nodes"):
-        if spec.get(name) is not None:
-            kw[name] = spec[name]
-    res = bem.solve(**kw)
-    rec = res.as_dict()
-    rec.setdefault("iterations", int(res.nit))
-    rec["profile_file"] = spec.get("profile")
-    rec["prony_file"] = spec.get("prony")
-    if not res.success:
-        return Solved(rec, None, None)
-    f = res.fields()
-    # the panel values are at hand: the constraints cost nothing on this road.  The mean σ is
-    # the fields' own quadrature: after a contact window the grid is not uniform (fine window
-    # panels, coarse periodic ones), and each panel weighs its width
-    smax = float(np.max(f.pressure)) if f.pressure.size else 0.0
-    load = rec.get("load") or float(res.load)
-    c = {"min_pressure": float(np.min(f.pressure)) / smax if smax > 0 else 0.0,
-         "min_gap": float(np.min(f.gap)),
-         "mean_pressure_error": abs(f.mean("pressure") / load - 1.0)}
-    return Solved(rec, f if want_fields else None, c)
-
-
-ROADS = {"analytic": _analytic, "bem": _bem}
-
-
-# ------------------------------------------------------------------------------ last line of defence
-def _nonfinite(v, path=""):
-    """The first path to a non-finite number in a JSON-like value, or None."""
-    if isinstance(v, dict):
-        for k, x in v.items():
-            bad = _nonfinite(x, f"{path}.{k}" if path else str(k))
-            if bad:
-                return bad
-    elif isinstance(v, (list, tuple)):
-        for i, x in enumerate(v):
-            bad = _nonfinite(x, f"{path}[{i}]")
-            if bad:
-                return bad
-    elif isinstance(v, float) and not math.isfinite(v):
-        return f"{path} = {v!r}"
-    return None
-
-
-def check_record(rec, spec, constraints=None, fields=None):
-    """Why a record must not be printed as a result, or None when it is a valid answer.
-
-    Checks: the road says success; every number finite; 0 < Δ/h ≤ 1, 0 < ka ≤ π (or null),
-    0 < contact fraction ≤ 1, μ ≥ 0, τf ≥ 0 (to round-off); the achieved load (or Δ/h) is the one
-    asked for; and, when the constraint figures are given, σ ≥ 0, gap ≥ 0 and mean σ = load.
-    """
-    if not isinstance(rec, dict):
-        return "no record"
-    if rec.get("success") is False:
-        msg = _one_line(rec.get("message") or "the solver reports failure")
-        res = (rec.get("diagnostics") or {}).get("residuals")
-        if res and "residual" not in msg:
-            msg += "; residuals " + ", ".join(f"{k}={_fmt(v)}" for k, v in res.items())
-        return msg  # the road's own words: not converged, accuracy target not reached, ...
-    missing = [k for k in ("load", "speed") + SCALAR_KEYS if k not in rec]
-    if missing:
-        return f"invalid result: keys {', '.join(missing)} missing"
-    bad = _nonfinite(rec)
-    if bad:
-        return f"invalid result: {bad} is not a finite number"
-    for k in ("load", "speed", "contact_fraction", "penetration", "tau_f", "mu"):
-        if not isinstance(rec[k], (int, float)) or isinstance(rec[k], bool):
-            return f"invalid result: {k} = {_json(rec[k])} is not a finite number"
-    # null is a statement: ka, kê with several patches, ke also in full contact; else a number
-    several = isinstance(rec.get("n_patches"), int) and rec["n_patches"] > 1
-    for k in ("ka", "ke", "ke_hat"):
-        v = rec[k]
-        if v is None and not several and not (k == "ke" and rec["full_contact"]):
-            return f"invalid result: {k} = null with a single contact patch"
-        if v is not None and (not isinstance(v, (int, float)) or isinstance(v, bool)):
-            return f"invalid result: {k} = {_json(v)} is not a finite number"
-    one = 1.0 + RANGE_ROUNDOFF
-    if not 0.0 < rec["penetration"] <= one:
-        return f"invalid result: penetration Δ/h = {rec['penetration']!r} outside (0, 1]"
-    if rec["ka"] is not None and not 0.0 < rec["ka"] <= math.pi * one:
-        return f"invalid result: ka = {rec['ka']!r} outside (0, π]"
-    if not 0.0 < rec["contact_fraction"] <= one:
-        return f"invalid result: contact_fraction = {rec['contact_fraction']!r} outside (0, 1]"
-    for k in ("mu", "tau_f"):
-        if rec[k] < -RANGE_ROUNDOFF:
-            return f"invalid result: {k} = {rec[k]!r} < 0 (friction must resist the motion)"
-    if not rec["load"] > 0.0:
-        return f"invalid result: load = {rec['load']!r} ≤ 0"
-    for k in ("load", "penetration"):
-        asked = spec.get(k)
-        if asked is not None and abs(rec[k] / asked - 1.0) > CONTROL_MISMATCH:
-            return f"invalid result: {k} = {rec[k]!r} is not the {asked!r} asked for"
-    if constraints:
-        if not all(isinstance(v, (int, float)) and math.isfinite(v) for v in constraints.values()):
-            return f"invalid result: constraint figures not finite ({constraints})"
-        if constraints["min_pressure"] < -CONSTRAINT_ROUNDOFF:
-            return f"invalid result: negative pressure (min σ = {constraints['min_pressure']:.3e} of the pressure scale)"
-        if constraints["min_gap"] < -CONSTRAINT_ROUNDOFF:
-            return f"invalid result: interpenetration (min gap = {constraints['min_gap']:.3e} h)"
-        if constraints["mean_pressure_error"] > CONTROL_MISMATCH:
-            return (f"invalid result: mean σ differs from the load by "
-                    f"{constraints['mean_pressure_error']:.3e} (relative)")
-    if fields is not None:
-        for name, arr in fields.as_dict().items():
-            if not np.all(np.isfinite(arr)):
-                return f"invalid result: the field {name} is not finite"
-    return None
-
-
-def _json(v):
-    return "null" if v is None else repr(v)
-
-
-def _fmt(v):
-    return f"{v:.3e}" if isinstance(v, float) else repr(v)
 
 
 # ------------------------------------------------------------------------------ one point
@@ -670,7 +491,11 @@ def run(spec, fields=False, deep=None):
     try:
         with _warnings.catch_warnings(record=True) as caught:
             _warnings.simplefilter("always")
-            solved = ROADS[spec["solver"]](spec, fields, deep)
+            if spec["solver"] == "bem":
+                solved = roads.bem_record(spec, _bem_problem(spec), fields)
+            else:
+                n = spec.get("field_points") or DEFAULTS["field_points"]
+                solved = roads.analytic_record(spec, n if fields else None, deep)
         rec = solved.record
         # the roads' own warnings are in the record already
         extra = [f"{w.category.__name__}: {w.message}" for w in caught

@@ -6,11 +6,11 @@ unique to the writing process (pid and a random suffix, so two runs on one folde
 one) and renamed into place, so an interrupted run loses nothing it has finished.
 
 Reading back, every file is validated before it is used (`Store.problem`): the JSON must parse,
-hold the spec it is filed under, and — for a converged run — a record that passes the runner's
-physical checks; the .npz must hold the four fields as finite 1-D arrays of one length (and, for
-a non-uniform grid, their cell widths ``width``, making one period: `viscosine.Fields`).  A
-truncated, empty or garbage file is treated as missing: ``has`` notes it on standard error and
-the run is done again.
+hold the spec it is filed under, and — for a converged run — a record that passes the last line
+of defence (`comparisons.gate`); the .npz must hold the four fields as finite 1-D arrays of one
+length (and, for a non-uniform grid, their cell widths ``width``, making one period:
+`viscosine.Fields`).  A truncated, empty or garbage file is treated as missing: ``has`` notes it
+on standard error and the run is done again.
 """
 from __future__ import annotations
 
@@ -24,7 +24,7 @@ import numpy as np
 from viscosine import Fields
 from viscosine._fields import WIDTH  # the cells of a non-uniform grid (optional)
 
-from . import runner
+from . import gate, runner
 from ._io import temporary_name
 
 FIELD_NAMES = ("x_over_lambda", "pressure", "displacement", "gap")
@@ -71,7 +71,7 @@ class Store:
                 doc = json.load(fh)
         except (OSError, UnicodeDecodeError, ValueError) as exc:
             raise StoreError(f"{os.path.basename(path)} is unreadable ({type(exc).__name__}: "
-                             f"{runner._one_line(exc)})") from None
+                             f"{gate.one_line(exc)})") from None
         why = _check_doc(doc, spec)
         if why:
             raise StoreError(f"{os.path.basename(path)}: {why}")
@@ -82,7 +82,7 @@ class Store:
                     doc["fields"] = {n: np.array(z[n]) for n in z.files}
             except Exception as exc:  # any unreadable archive (truncated zip, garbage, missing)
                 raise StoreError(f"{os.path.basename(npz)} is unreadable ({type(exc).__name__}: "
-                                 f"{runner._one_line(exc)})") from None
+                                 f"{gate.one_line(exc)})") from None
             why = _check_fields(doc["fields"])
             if why:
                 raise StoreError(f"{os.path.basename(npz)}: {why}")
@@ -149,7 +149,7 @@ def _check_doc(doc, spec):
     if not isinstance(doc["ok"], bool):
         return "ok is not true/false"
     if doc["ok"]:
-        why = runner.check_record(doc["record"], spec)
+        why = gate.check_record(doc["record"], spec)
         if why:
             return why
     elif not isinstance(doc["error"], str):

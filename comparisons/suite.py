@@ -91,6 +91,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import roads as _roads
 from ._io import write_text
 from .convergence import observed_order, richardson
 
@@ -333,49 +334,17 @@ def case_material(point, base=DATA):
 
 def _problem(point, base=DATA):
     """(profile, material) objects of the BEM for an operating point dict."""
-    import bem
     if point.get("prony"):
-        material = bem.read_prony(Path(base) / point["prony"])
+        material = _roads.read_prony(Path(base) / point["prony"])
     elif point.get("material"):
         material = case_material(point, base).prony
     else:
-        material = bem.Prony.standard_linear_solid(point.get("ratio", 3.0))
+        material = _roads.standard_linear_solid(point.get("ratio", 3.0))
     if point.get("profile"):
-        profile = bem.read_profile(Path(base) / point["profile"])
+        profile = _roads.read_profile(Path(base) / point["profile"])
     else:
-        profile = bem.Sinusoid(point.get("hk", 1.0))
+        profile = _roads.sinusoid(point.get("hk", 1.0))
     return profile, material
-
-
-def _control(point):
-    if point.get("load") is not None:
-        return {"load": float(point["load"])}
-    return {"penetration": float(point["penetration"])}
-
-
-def analytic_solution(point):
-    """The semi-analytic solution at an operating point (load or penetration control).
-
-    The one place the analytic road's call shape for each control lives.
-    """
-    import analytic
-    return analytic.solve(**_control(point), speed=float(point["speed"]),
-                          ratio=float(point.get("ratio", 3.0)), hk=float(point.get("hk", 1.0)))
-
-
-def fourier_solution(point, material):
-    """The Fourier reference at an operating point on the sinusoid (load or penetration control)
-    for the creep series ``material`` (a :class:`bem.Prony`, the BEM's own input, so that both
-    roads solve the same material).
-
-    ``require_resolved=False``: broad spectra have memory layers far below any grid, which the
-    reference's estimates and refusals judge, not a blanket refusal.
-    """
-    import analytic
-    return analytic.fourier_solve(**_control(point), speed=float(point["speed"]),
-                                  creep=(float(material.J0), tuple(float(j) for j in material.J),
-                                         tuple(float(t) for t in material.tau)),
-                                  hk=float(point.get("hk", 1.0)), require_resolved=False)
 
 
 #: the Fourier reference's estimates are relative for these (absolute for ka, ke, ke_hat)
@@ -397,18 +366,11 @@ def _fourier_evidence(ref, key):
     return v, e
 
 
-#: Krylov tolerance of the suite's BEM solves (relative to h k): below the discretisation error
-#: at the finest mesh, so that the convergence study sees the mesh and not the linear solver
-#: (the default 1e-10 leaves Δ/h changes of ~1e-11 at N = 2^18)
-BEM_TOL = 1e-12
-
-
 def bem_solution(point, nodes, base=DATA, problem=None):
-    """The BEM solution at an operating point on ``nodes`` panels (Krylov tolerance BEM_TOL)."""
-    import bem
-    profile, material = problem or _problem(point, base)
-    return bem.solve(profile=profile, material=material, speed=float(point["speed"]),
-                     nodes=int(nodes), tol=BEM_TOL, **_control(point))
+    """The BEM solution at an operating point on ``nodes`` panels (`roads.bem_solution`, Krylov
+    tolerance `roads.BEM_TOL`); ``problem`` is read from the point's files under ``base`` when
+    not given."""
+    return _roads.bem_solution(point, nodes, problem or _problem(point, base))
 
 
 def bem_fields(res):
@@ -433,8 +395,7 @@ class ProfileShape:
 
     def __init__(self, point, base=DATA):
         if point.get("profile"):
-            import bem
-            prof = bem.read_profile(Path(base) / point["profile"])
+            prof = _roads.read_profile(Path(base) / point["profile"])
             y = np.asarray(prof.heights, float)
             m = y.size
             f = np.fft.rfft(y) / m
@@ -723,13 +684,13 @@ def compute(case, base=DATA, progress=None):
             progress(f"N = {n}: {'ok' if r.success else 'FAILED'} "
                      f"({time.perf_counter() - t0:.2f} s)")
 
-    ref = analytic_solution(point) if roads else None
+    ref = _roads.analytic_solution(point) if roads else None
     if ref is not None and not ref.success:
         failures.append(f"semi-analytic: {ref.message}")
         ref_ok = False
     else:
         ref_ok = ref is not None
-    four = fourier_solution(point, problem[1]) if reference == "fourier" else None
+    four = _roads.fourier_solution(point, problem[1]) if reference == "fourier" else None
     four_ok = four is not None and bool(four.success)
     if four is not None and not four_ok:
         failures.append(f"Fourier reference: {four.message.splitlines()[0][:200]}")
@@ -944,18 +905,6 @@ def compare(old, new, old_fields=None, new_fields=None):
 
 
 # --------------------------------------------------------------------------- check
-def _source_hash() -> str:
-    """Hash of the two roads' source files: a resumed check never reuses another code's results."""
-    import analytic
-    import bem
-    h = hashlib.sha256()
-    for pkg in (analytic, bem):
-        for f in sorted(Path(pkg.__file__).parent.glob("*.py")):
-            h.update(f.name.encode())
-            h.update(f.read_bytes())
-    return h.hexdigest()
-
-
 def _case_key(case) -> str:
     """Hash of what determines a case's recomputation: its definition, its input files, the
     version and the source of both roads."""
@@ -976,7 +925,7 @@ def _case_key(case) -> str:
         for mod in (vm, _materials):
             h.update(Path(mod.__file__).read_bytes())
     h.update(viscosine.__version__.encode())
-    h.update(_source_hash().encode())
+    h.update(_roads.source_hash().encode())
     return h.hexdigest()[:20]
 
 
@@ -1169,7 +1118,7 @@ def _inputs(case, suite) -> dict:
     p = case["point"]
     d = {"name": case["name"], "title": case["title"], "suite_version": suite["version"],
          "control": "load" if p.get("load") is not None else "penetration"}
-    d.update(_control(p))
+    d.update(_roads.point_controls(p))
     d["speed"] = float(p["speed"])
     if p.get("profile"):
         text = (DATA / p["profile"]).read_text(encoding="utf-8")
@@ -1297,6 +1246,12 @@ def _material_png(path, case):
     os.replace(tmp, path)
 
 
+def summary_table(cases) -> str:
+    """The Markdown table of `summary_rows` (`suite --list`, the exported README)."""
+    from ._html import table
+    return table(["case", "title", "μ digits", "Δ/h digits", "certified by"], summary_rows(cases))
+
+
 def summary_rows(cases):
     """(case, title, μ digits, Δ/h or load digits, how) for each case."""
     rows = []
@@ -1316,7 +1271,6 @@ def summary_rows(cases):
 
 
 def _index_readme(suite, cases) -> str:
-    from ._html import table
     out = [f"# viscosine benchmark suite, version {suite['version']}", "",
            suite["description"], "",
            "Each folder is one case:", "",
@@ -1351,7 +1305,7 @@ def _index_readme(suite, cases) -> str:
            "patch's summit).", "",
            "## How the digits are certified", "", suite["rule"], "",
            "## Cases", "",
-           table(["case", "title", "μ digits", "Δ/h digits", "certified by"], summary_rows(cases)),
+           summary_table(cases),
            *_materials_list(cases),
            "Cite: Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the "
            "problem and the semi-analytic method).", ""]
@@ -1373,83 +1327,20 @@ def _materials_list(cases):
                for c in prony] + [""])
 
 
-# --------------------------------------------------------------------------- command line
-def add_parser(sub):
-    """Register ``suite`` on the subparsers ``sub`` of the command line."""
-    p = sub.add_parser("suite", help="the certified benchmark suite: export it or check it")
-    g = p.add_mutually_exclusive_group(required=True)
-    g.add_argument("--export", metavar="DIR", default=None,
-                   help="write the suite as plain CSV/JSON into DIR (one folder per case)")
-    g.add_argument("--check", action="store_true",
-                   help="recompute every value; exit 1 if a certified digit changed")
-    g.add_argument("--certify", action="store_true",
-                   help="maintainers: recompute and rewrite the shipped certification")
-    g.add_argument("--list", action="store_true", help="print the cases and their digits")
-    p.add_argument("--cases", nargs="+", metavar="NAME", default=[],
-                   help="restrict to these cases")
-    p.add_argument("--out", metavar="DIR", default="suite-check",
-                   help="--check: write each recomputed case here as soon as it is done "
-                        "(default ./suite-check)")
-    p.add_argument("--resume", action="store_true",
-                   help="--check: reuse the cases already recomputed in --out (same case "
-                        "definition, files, version and solver source)")
-    p.add_argument("--workers", type=int, default=1, help="--check: processes (default 1)")
-    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
-                   help="--check: a Dask distributed scheduler to run the cases on")
-    return p
-
-
-def main(args) -> int:
-    """Run ``suite`` from parsed arguments; exit status 0, 1 (a digit changed, a recomputation
-    failed, the scheduler cannot be reached) or 2 (bad input)."""
-    from . import _cluster
-    try:
-        if args.workers < 1:
-            raise SuiteError(f"--workers {args.workers} is not allowed: an integer >= 1")
-        suite = load_suite()
-        cases = select(suite, args.cases)
-        if args.list:
-            from ._html import table
-            print(table(["case", "title", "μ digits", "Δ/h digits", "certified by"],
-                        summary_rows(cases)), end="")
-            return 0
-        if args.export:
-            dirs = export(args.export, args.cases, suite)
-            print(f"suite: wrote {len(dirs)} cases and README.md to {args.export}",
-                  file=sys.stderr)
-            return 0
-        if args.certify:
-            certify(args.cases)
-            return 0
-        if args.scheduler and args.workers != 1:
-            raise SuiteError("--scheduler and --workers are not allowed together: the cluster "
-                             "decides how many workers run")
-        res = check(args.cases, out=args.out, resume=args.resume, workers=args.workers,
-                    scheduler=args.scheduler, suite=suite)
-    except SuiteError as exc:
-        print(str(exc).splitlines()[0], file=sys.stderr)
-        return 2
-    except _cluster.MissingPackage as exc:  # --scheduler without the cluster extra
-        print(str(exc).splitlines()[0], file=sys.stderr)
-        return 2
-    except _cluster.ClusterError as exc:  # an unreachable scheduler
-        print(f"suite: {str(exc).splitlines()[0]}", file=sys.stderr)
-        return 1
+def check_lines(res):
+    """The lines `check`'s result ``res`` prints, one or more per case: ok (with its status
+    when not complete), CHANGED or FAILED with what changed, and the digits that can be raised."""
+    out = []
     for r in res["cases"]:
         if r["status"] == "failed":
-            print(f"{r['name']}: FAILED")
-            for line in r["changed"]:
-                print(f"  {line}")
+            out.append(f"{r['name']}: FAILED")
+            out += [f"  {line}" for line in r["changed"]]
         elif r["changed"]:
-            print(f"{r['name']}: CHANGED")
-            for line in r["changed"]:
-                print(f"  {line}")
+            out.append(f"{r['name']}: CHANGED")
+            out += [f"  {line}" for line in r["changed"]]
         else:
-            print(f"{r['name']}: ok" + (f" ({r['status']}: {'; '.join(r['notes'])[:300]})"
-                                        if r["status"] != "complete" else ""))
-        for line in r["raised"]:
-            print(f"  can be raised: {line} (run suite --certify --cases {r['name']})")
-    n_bad = sum(bool(r["changed"]) for r in res["cases"])
-    print(f"suite: {len(res['cases'])} cases checked in {res['seconds']:.0f} s, "
-          f"{n_bad} with changed certified digits", file=sys.stderr)
-    return 0 if res["ok"] else 1
+            out.append(f"{r['name']}: ok" + (f" ({r['status']}: {'; '.join(r['notes'])[:300]})"
+                                             if r["status"] != "complete" else ""))
+        out += [f"  can be raised: {line} (run suite --certify --cases {r['name']})"
+                for line in r["raised"]]
+    return out

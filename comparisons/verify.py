@@ -134,17 +134,24 @@ import numpy as np
 
 from viscosine import Fields
 from viscosine._fields import UNIFORM_SPACING, WIDTH
+from viscosine._protocol import SCALAR_KEYS
 
+from . import _errors, roads
 from . import suite as _suite
-from ._io import write_text
+from ._io import check_output_dir, write_text
 from .convergence import observed_order
+from .fields import true_runs
 
+#: the scalars verify compares: the numbers among the protocol's scalars
+#: (`viscosine._protocol.SCALAR_KEYS`, all but the flag full_contact) and the controls
+#: separation and load; relatively (REL) or in absolute terms (ABS: positions, in radians)
 REL = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction")
 ABS = ("ka", "ke", "ke_hat")
-SCALAR_KEYS = REL + ABS
+COMPARED_KEYS = REL + ABS
+assert set(COMPARED_KEYS) == (set(SCALAR_KEYS) - {"full_contact"}) | {"separation", "load"}
 NORM_KEYS = ("pressure_L2", "pressure_Linf", "displacement_L2", "displacement_Linf", "gap_Linf",
              "edges")
-ALL_KEYS = SCALAR_KEYS + NORM_KEYS
+ALL_KEYS = COMPARED_KEYS + NORM_KEYS
 LABELS = {"mu": "μ", "tau_f": "τ̃f", "penetration": "Δ/h", "separation": "s/h",
           "load": "p̃∞", "contact_fraction": "2a/λ", "ka": "ka", "ke": "ke", "ke_hat": "kê",
           "pressure_L2": "σ L2 / max σ", "pressure_Linf": "σ L∞ / max σ",
@@ -342,7 +349,7 @@ def read_scalars_jsonl(path, option="--scalars") -> list[dict]:
         if not isinstance(obj, dict):
             raise _bad(option, path, f"line {i} is not a JSON object", SCALARS_ALLOWED)
         rec = {}
-        for k in SCALAR_KEYS:
+        for k in COMPARED_KEYS:
             v = obj.get(k)
             if v is None:
                 continue
@@ -351,7 +358,7 @@ def read_scalars_jsonl(path, option="--scalars") -> list[dict]:
                            SCALARS_ALLOWED)
             rec[k] = float(v)
         if not rec:
-            raise _bad(option, path, f"line {i} has none of the keys {', '.join(SCALAR_KEYS)}",
+            raise _bad(option, path, f"line {i} has none of the keys {', '.join(COMPARED_KEYS)}",
                        SCALARS_ALLOWED)
         nodes = obj.get("nodes")
         if nodes is not None and (isinstance(nodes, bool) or not isinstance(nodes, int)
@@ -441,8 +448,7 @@ def check_point(point, option_prefix="--"):
             raise _bad("--hk", point["hk"], "given with --profile", "one of --hk and --profile")
     else:
         num("hk", lambda v: v > 0.0, "hk > 0")
-    import bem
-    for k, reader in (("profile", bem.read_profile), ("prony", bem.read_prony)):
+    for k, reader in (("profile", roads.read_profile), ("prony", roads.read_prony)):
         if point.get(k):
             path = point[k]
             _text(path, "--" + k, f"a {k} file (see bem.read_{k})")
@@ -455,20 +461,6 @@ def check_point(point, option_prefix="--"):
 
 
 # =========================================================================== scalars from fields
-def _runs(mask):
-    """Cyclic runs of True as (first index, length)."""
-    n = mask.size
-    if mask.all():
-        return [(0, n)]
-    if not mask.any():
-        return []
-    start = int(np.flatnonzero(~mask)[0])
-    rolled = np.roll(mask, -start).astype(np.int8)
-    d = np.diff(np.concatenate(([0], rolled, [0])))
-    return [((int(f) + start) % n, int(l - f))
-            for f, l in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1))]
-
-
 def _grid(fields) -> Fields:
     """The `viscosine.Fields` of a fields dict, for its quadrature (a column it lacks is zeros
     there: only what the dict holds is ever read from it)."""
@@ -635,7 +627,7 @@ def scalars_from_fields(fields, shape):
     Returns
     -------
     (dict, list of dict)
-        The scalars (keys of SCALAR_KEYS plus ``full_contact``; a key is absent when the fields
+        The scalars (keys of COMPARED_KEYS plus ``full_contact``; a key is absent when the fields
         cannot give it) and the patches (``trailing_edge``, ``leading_edge``, ``load``,
         ``centroid``, ``summit``, ``ka``, ``ke``, ``ke_hat``).  The method is in the module
         docstring.
@@ -687,7 +679,7 @@ def scalars_from_fields(fields, shape):
             sn = np.sum(w_cells * p * phase)
             out["ke_hat"] = float(np.angle(yn / sn)) / n
         return out, patches
-    runs = _runs(contact)
+    runs = true_runs(contact)
     for i, (first, length) in enumerate(runs):
         nxt = runs[(i + 1) % len(runs)][0]
         prv_first, prv_len = runs[i - 1]
@@ -810,11 +802,11 @@ def reference_for(point, case=None) -> Reference:
     suite's certified BEM values (``case``) or a BEM convergence study as the suite's."""
     shape = _suite.ProfileShape(point, base="/")
     if _suite.two_roads(point):
-        sol = _suite.analytic_solution(point)
+        sol = roads.analytic_solution(point)
         if not sol.success:
             raise RuntimeError(f"the semi-analytic reference failed: {sol.message}")
         sc = {}
-        for k in SCALAR_KEYS:
+        for k in COMPARED_KEYS:
             v = getattr(sol, k, None)
             if v is not None:
                 sc[k] = (float(v), 1e-12 * abs(float(v)))
@@ -906,7 +898,7 @@ def results_from_fields(fields_list, shape, nodes=None, solver_scalars=None):
         source = "fields"
         if solver_scalars and solver_scalars[i]:
             sc = {**sc, **{k: float(v) for k, v in solver_scalars[i].items()
-                           if k in SCALAR_KEYS and v is not None}}
+                           if k in COMPARED_KEYS and v is not None}}
             source = "solver (fields for the rest)"
         out.append(Result(nodes[i] if nodes else f["x_over_lambda"].size, f, sc, patches, source))
     return out
@@ -1101,7 +1093,7 @@ def _bem_derived(point_json, nodes, columns):
         return None
     f = {"x_over_lambda": x, "pressure": p, "displacement": v, "gap": g}
     f = {k: f[k] for k in ("x_over_lambda",) + columns}
-    own = {k: v for k, v in res.scalars().items() if k in SCALAR_KEYS and v is not None}
+    own = {k: v for k, v in res.scalars().items() if k in COMPARED_KEYS and v is not None}
     return (*scalars_from_fields(f, _suite.ProfileShape(point, base="/")), own)
 
 
@@ -1112,7 +1104,7 @@ def _bem_errors(reference, nodes, columns):
         return {}
     sc, patches, own = got
     out = {}
-    for k in SCALAR_KEYS:  # a correct solver's miss: the BEM's own or its fields', the larger
+    for k in COMPARED_KEYS:  # a correct solver's miss: the BEM's own or its fields', the larger
         ref = reference.scalars.get(k, (None, None))[0]
         got_k = [m for m in (_measure(k, sc.get(k), ref), _measure(k, own.get(k), ref))
                  if m is not None]
@@ -1145,7 +1137,7 @@ def _grid_tolerances(rtol, reference, nodes, columns):
     GRID_FACTOR · e_N) (`grid_errors`); the keys where rtol binds share one reason."""
     n = int(round(nodes))
     errs = grid_errors(reference, n, columns)
-    keys = SCALAR_KEYS + ("edges",)
+    keys = COMPARED_KEYS + ("edges",)
     law = f"max({rtol:.1e}, {GRID_FACTOR:g} e_N), N = {n}"
     floor = [errs[k] for k in keys if k in errs and GRID_FACTOR * errs[k] <= rtol]
     out = {}
@@ -1183,7 +1175,7 @@ def tolerances(rtol=DEFAULT_RTOL, tol=None, fields=None, reference=None, rtol_gi
     src = (f"--rtol {rtol:.1e}" if rtol_given else f"the default --rtol {rtol:.1e}")
     grid = "" if rtol_given else ": the grid is not known (no fields, no nodes)"
     out = {}
-    for k in SCALAR_KEYS:
+    for k in COMPARED_KEYS:
         out[k] = (rtol, f"{src} (relative for μ, τ̃f, Δ/h, s/h, p̃∞, 2a/λ; absolute in "
                         f"radians for ka, ke, kê){grid}")
     out["edges"] = (rtol, f"{src} (absolute, in x/λ){grid}")
@@ -1221,7 +1213,7 @@ def derivation_floor(result: Result, reference: Reference):
         f[WIDTH] = result.fields[WIDTH]
     sc, patches = scalars_from_fields(f, reference.shape)
     out = {}
-    for k in SCALAR_KEYS:
+    for k in COMPARED_KEYS:
         if k in sc and k in reference.scalars and result.source == "fields":
             out[k] = _measure(k, sc[k], reference.scalars[k][0])
     edges = _match(reference.patches, patches) if reference.patches else None
@@ -1310,7 +1302,7 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
              for k in set(derived) | set(position)}
     errs = best.errors or {}
     rows = []
-    for k in SCALAR_KEYS:
+    for k in COMPARED_KEYS:
         val = best.scalars.get(k)
         ref, unc = reference.scalars.get(k, (None, None))
         if val is None or ref is None:
@@ -1513,8 +1505,8 @@ def convergence(results, reference):
     nodes = [r.nodes for r in res]
     out = {"nodes": nodes, "quantities": {}}
     norm_rows = [norms(r, reference)[0] for r in res]
-    for k in SCALAR_KEYS + NORM_KEYS[:-1]:
-        if k in SCALAR_KEYS:
+    for k in COMPARED_KEYS + NORM_KEYS[:-1]:
+        if k in COMPARED_KEYS:
             vals = [r.scalars.get(k) for r in res]
             ref = reference.scalars.get(k, (None, None))[0]
             if ref is None or any(v is None for v in vals):
@@ -1526,7 +1518,7 @@ def convergence(results, reference):
                 continue
             errs, ref = vals, 0.0
         q = {"values": vals, "errors": errs, "order_vs_reference": fit_order(nodes, errs)}
-        if k in SCALAR_KEYS and len(vals) >= 3 and _doubling(nodes):
+        if k in COMPARED_KEYS and len(vals) >= 3 and _doubling(nodes):
             st = _suite.study(nodes, vals, last=min(_suite.LAST, len(vals) - 1))
             q.update(self_order=st["order"], richardson=st["richardson"],
                      richardson_error=_measure(k, st["richardson"], ref)
@@ -1832,7 +1824,7 @@ def assert_agrees(fields_or_scalars, case, rtol=None, tol=None):
     obj = fields_or_scalars
     is_scalars = isinstance(obj, dict) and "pressure" not in obj and "x_over_lambda" not in obj
     if is_scalars:
-        sc = {k: float(v) for k, v in obj.items() if k in SCALAR_KEYS and v is not None}
+        sc = {k: float(v) for k, v in obj.items() if k in COMPARED_KEYS and v is not None}
         results = [Result(obj.get("nodes"), None, sc, [], "solver")]
     else:
         f = _as_fields(obj, "fields_or_scalars", type(obj).__name__)
@@ -1853,92 +1845,7 @@ def assert_agrees(fields_or_scalars, case, rtol=None, tol=None):
     return ev
 
 
-# =========================================================================== command line
-def _float_opt(name):
-    def conv(text):
-        try:
-            v = float(text)
-        except ValueError:
-            import argparse
-            raise argparse.ArgumentTypeError(f"--{name} {text!r}: not a number") from None
-        return v
-    return conv
-
-
-def _int_opt(name):
-    def conv(text):
-        try:
-            return int(text)
-        except ValueError:
-            import argparse
-            raise argparse.ArgumentTypeError(f"--{name} {text!r}: not an integer") from None
-    return conv
-
-
-def add_parser(sub):
-    """Register ``verify`` on the subparsers ``sub`` of the command line."""
-    p = sub.add_parser("verify", help="verify another code's results against viscosine's "
-                                      "reference: verdict, report.md/.html, verdict.json",
-                       description="Verify another code's results against viscosine's "
-                                   "reference. The operating point is in the conventions' "
-                                   "dimensionless units, or in SI with --units SI (then --load "
-                                   "is p∞ in Pa, --penetration Δ in m, --speed V in m/s).")
-    p.add_argument("--case", default=None, help="a suite case (see `suite --list`)")
-    g = p.add_mutually_exclusive_group()
-    g.add_argument("--load", type=_float_opt("load"), default=None,
-                   help="p̃∞ = p∞(1 − ν²)/E0; with --units SI the mean pressure p∞ in Pa")
-    g.add_argument("--penetration", type=_float_opt("penetration"), default=None,
-                   help="Δ/h; with --units SI the penetration Δ in m")
-    p.add_argument("--speed", type=_float_opt("speed"), default=None,
-                   help="V/V0 = Vτk; with --units SI the sliding speed V in m/s")
-    p.add_argument("--ratio", type=_float_opt("ratio"), default=None, help="E∞/E0 (default 3)")
-    p.add_argument("--hk", type=_float_opt("hk"), default=None, help="h k (default 1)")
-    p.add_argument("--profile", default=None, help="profile file (bem.read_profile)")
-    p.add_argument("--prony", default=None, help="Prony creep function file (bem.read_prony)")
-    src = p.add_mutually_exclusive_group(required=True)
-    src.add_argument("--fields", nargs="+", metavar="F.csv", default=None,
-                     help="fields CSV files (several: a convergence study)")
-    src.add_argument("--scalars", metavar="F.jsonl", default=None, help="JSON lines of scalars")
-    src.add_argument("--callable", metavar="MODULE:FUNCTION", default=None,
-                     help="function(point, nodes) returning fields")
-    src.add_argument("--peer", choices=["tamaas"], default=None,
-                     help="a third-party code: Tamaas, a dt study at each --nodes extrapolated "
-                          "to dt → 0 (progress on standard error)")
-    p.add_argument("--nodes", type=_int_opt("nodes"), nargs="+", default=None,
-                   help="resolutions for --callable (default "
-                        f"{' '.join(map(str, DEFAULT_NODES))}) or --peer (default "
-                        f"{' '.join(map(str, DEFAULT_PEER_NODES))}: about a minute on two cores)")
-    dt = p.add_mutually_exclusive_group()
-    dt.add_argument("--dt-cells", type=_float_opt("dt-cells"), nargs="+", default=None,
-                    metavar="C", help="--peer: the dt study's time steps, in cell crossings T/N "
-                    "(T the period), coarse to fine (default "
-                    f"{' '.join(map(str, DEFAULT_DT_CELLS))}); the verdict is on the values extrapolated to dt → 0, with their "
-                    "estimated error (one value: no extrapolation)")
-    dt.add_argument("--dt", type=_float_opt("dt"), default=None,
-                    help="--peer: a single time step in units of τ (no dt study)")
-    p.add_argument("--rtol", type=_float_opt("rtol"), default=None,
-                   help="a flat tolerance of every scalar and of the contact edges (default: "
-                        f"max({DEFAULT_RTOL:g}, {GRID_FACTOR:g} e_N) on a grid of N points, "
-                        "e_N what viscosine's BEM misses the reference by there; "
-                        f"{DEFAULT_RTOL:g} when N is not known); the field norms' tolerances "
-                        "follow from the grid (the verdict states each, and why)")
-    p.add_argument("--tol", action="append", default=[], metavar="NAME=VALUE",
-                   help=f"tolerance of one quantity: {', '.join(ALL_KEYS)}")
-    p.add_argument("--units", choices=["conventions", "SI"], default="conventions",
-                   help="SI: the fields files in Pa, m, m (with --E0 --nu --amplitude) and, "
-                        "without --case, the operating point in SI: --load in Pa (or "
-                        "--penetration in m), --speed in m/s, with --E0 --Einf --tau --nu "
-                        "--wavelength --amplitude")
-    for name, unit in (("E0", "Pa"), ("Einf", "Pa"), ("tau", "s"), ("nu", "-"),
-                       ("wavelength", "m"), ("amplitude", "m")):
-        p.add_argument(f"--{name}", type=_float_opt(name), default=None,
-                       help=f"--units SI: {name} [{unit}]")
-    p.add_argument("--out", default="verify-report", help="output folder (default ./verify-report)")
-    p.add_argument("--label", default=None, help="name of the solver under test in the report")
-    p.add_argument("--no-figures", action="store_true", help="skip the figures")
-    return p
-
-
+# =========================================================================== the command
 def _parse_tols(items):
     out = {}
     for it in items:
@@ -2053,21 +1960,22 @@ def _peer_progress(label, total):
     return report
 
 
-def main(args) -> int:
-    """Run ``verify`` from parsed arguments; exit status 0 (pass), 1 (fail) or 2 (bad input).
+def run(args) -> int:
+    """`python -m comparisons verify` from its parsed options (``args``: an argparse namespace
+    of `comparisons.cli.verify`); prints the verdict; exit status 0 (pass) or 1 (fail).
 
-    Bad input is raised as the command line's ``BadInput`` (one line on standard error with the
+    Bad input is raised as `comparisons._errors.BadInput` (one line on standard error with the
     command's prefix, exit status 2) and a failure of the solver under test, of the reference or
-    of writing the report as its ``Failed`` (exit status 1).
+    of writing the report as `comparisons._errors.Failed` (exit status 1), each within
+    `MESSAGE_LIMIT` characters.
     """
-    from . import cli as _cli
     try:
-        return _main(args, _cli)
+        return _run(args)
     except BadInput as exc:
-        raise _cli.BadInput(_short(exc)) from None
+        raise _errors.BadInput(_short(exc)) from None
 
 
-def _main(args, _cli) -> int:
+def _run(args) -> int:
     tols = _parse_tols(args.tol)
     rtol_given = args.rtol is not None
     rtol = args.rtol if rtol_given else DEFAULT_RTOL
@@ -2097,9 +2005,9 @@ def _main(args, _cli) -> int:
                        "not distinct positive numbers",
                        "time steps in cell crossings T/N, e.g. 4 2 1")
     try:  # before any work, as point and sweep check theirs
-        _cli._check_output_dir("--out", args.out, create=False)
-    except _cli.BadInput as exc:
-        raise _cli.BadInput(_short(exc)) from None
+        check_output_dir("--out", args.out, create=False)
+    except _errors.BadInput as exc:
+        raise _errors.BadInput(_short(exc)) from None
     inputs = {}
     shape = _suite.ProfileShape(point, base="/")
     if args.fields:
@@ -2151,10 +2059,10 @@ def _main(args, _cli) -> int:
             except BadInput:
                 raise
             except Exception as exc:  # the solver under test failed: its verdict, not ours
-                raise _cli.Failed(_short(f"{label} failed at N = {n}: {type(exc).__name__}: "
+                raise _errors.Failed(_short(f"{label} failed at N = {n}: {type(exc).__name__}: "
                                          f"{exc}")) from None
             if getattr(obj, "success", True) is False:
-                raise _cli.Failed(_short(f"{label} did not converge at N = {n}: "
+                raise _errors.Failed(_short(f"{label} did not converge at N = {n}: "
                                          f"{getattr(obj, 'message', '')}"))
             f = _as_fields(obj, opt, label)
             if si:
@@ -2178,12 +2086,12 @@ def _main(args, _cli) -> int:
         ev = evaluate(results, ref, rtol=rtol, tol=tols, rtol_given=rtol_given,
                       si=si is not None)
     except RuntimeError as exc:
-        raise _cli.Failed(_short(exc)) from None
+        raise _errors.Failed(_short(exc)) from None
     try:
         write_report(args.out, ev, point, ref, results, label, inputs, case,
                      figures=not args.no_figures)
     except OSError as exc:
-        raise _cli.Failed(_short(f"--out {args.out}: cannot write the report "
+        raise _errors.Failed(_short(f"--out {args.out}: cannot write the report "
                                  f"({exc.strerror or exc})")) from None
     for r in ev["quantities"]:
         own = ("" if r.get("solver_error") is None else

@@ -142,7 +142,7 @@ def test_terms_sharing_one_shift_are_summed_as_each_alone():
     """Shifted terms share their second integral's kernel values (one set per grid): the
     operator equals the sum of each term's own shifted coefficients, periodic and windowed.
     A 52-term stiff spectrum at a speed where 52 terms take the joint shift."""
-    from comparisons._bench_materials import sample
+    from comparisons.bench.materials import sample
     import bem
     from bem import _influence as inf
     p = sample(4, 20261125)[3]

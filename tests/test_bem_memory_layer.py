@@ -222,7 +222,7 @@ def test_the_shift_of_many_terms_bounds_their_joint_sawtooth():
     memories: the shifts leave the sawtooth ratio of the model with all terms at least -k,
     share one value, and stay below 0.27 h; terms that shift alone under the one-term rule are
     shifted, and one term is collocation_shift exactly."""
-    from comparisons._bench_materials import sample
+    from comparisons.bench.materials import sample
     k = _influence.SAWTOOTH_RATIO
     worse = 0
     for p in sample(40, 7):
@@ -250,7 +250,7 @@ def test_a_stiff_broad_spectrum_has_no_joint_sawtooth():
     (model ratio -0.88): with the one-term rule the contact edge grew a fringe of alternating
     panels that moved two panels per active-set step and never settled (the adaptive default
     refused the point).  With the joint shift the grid converges in one step, one patch."""
-    from comparisons._bench_materials import sample
+    from comparisons.bench.materials import sample
     p = sample(4, 20261125)[3]
     mat = bem.Prony(p["J0"], p["J"], p["tau"])
     h = 1.0 / 131072

@@ -152,8 +152,8 @@ def test_penetration_control_keeps_the_periodic_grids():
 
 def test_the_light_honesty_sample_stays_inside_the_accepted_inputs():
     """`bench --honesty --light`: every point is one the BEM accepts (p~/hk down to 1e-8)."""
-    from comparisons import _bench_trust
-    pts = _bench_trust.sample(400, 7, light=True)
+    from comparisons.bench import trust
+    pts = trust.sample(400, 7, light=True)
     q = [p["load"] / p["hk"] for p in pts]
     assert min(q) >= 1e-8 and max(q) <= 1e-4 and min(q) < 1e-7
     for p in pts:

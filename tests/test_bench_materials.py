@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from comparisons import _bench_materials as bm
+from comparisons.bench import materials as bm
 
 
 @pytest.mark.parametrize("shape", bm.SHAPES)

@@ -16,7 +16,7 @@ import pytest
 
 import analytic
 import bem
-from comparisons import cli, runner
+from comparisons import cli, points, runner
 
 KEYS = {"solver", "load", "speed", "ratio", "hk", "full_contact", "contact_fraction", "ka", "ke",
         "ke_hat", "penetration", "tau_f", "mu", "version", "success", "message", "warnings",
@@ -340,8 +340,8 @@ def test_sweep_fields_one_file_per_point_named_after_it(tmp_path, capsys):
 def test_field_file_names_are_unique_and_safe():
     used = set()
     spec = {"solver": "bem", "load": 1e20, "penetration": None, "speed": 1.0 / 3.0}
-    a = cli.field_file_name(spec, used, 0)
-    b = cli.field_file_name(spec, used, 7)
+    a = points.field_file_name(spec, used, 0)
+    b = points.field_file_name(spec, used, 7)
     assert a == "bem_load1e+20_speed0.3333333333333333.csv" and b.endswith("_8.csv") and a != b
 
 

@@ -6,6 +6,7 @@ import os
 import pytest
 
 from comparisons import cli
+from comparisons.cli import _common
 
 POINT = ["point", "--solver", "bem", "--load", "0.3", "--speed", "1"]
 APOINT = ["point", "--solver", "analytic", "--load", "0.3", "--speed", "1"]
@@ -172,16 +173,16 @@ def test_every_subcommand_has_help(capsys):
 def test_a_subcommand_in_its_own_module_registers_with_one_line(monkeypatch, capsys):
     import sys
     import types
-    mod = types.ModuleType("comparisons.demo")
+    mod = types.ModuleType("comparisons.cli.demo")
 
     def add_parser(sub):
         p = sub.add_parser("demo", help="a demonstration")
         p.add_argument("--x", type=int, default=1)
-        return p
+        p.set_defaults(run=mod.run)
     mod.add_parser = add_parser
-    mod.main = lambda args: 0 if args.x == 5 else 1
-    monkeypatch.setitem(sys.modules, "comparisons.demo", mod)
-    monkeypatch.setattr(cli, "SUBCOMMANDS", cli.SUBCOMMANDS + [cli.module_subcommand("demo")])
+    mod.run = lambda args: 0 if args.x == 5 else 1
+    monkeypatch.setitem(sys.modules, "comparisons.cli.demo", mod)
+    monkeypatch.setattr(cli, "SUBCOMMANDS", cli.SUBCOMMANDS + (mod,))
     assert cli.main(["demo", "--x", "5"]) == 0
     assert cli.main(["demo", "--y"]) == 2
     assert "unrecognized arguments: --y" in capsys.readouterr().err
@@ -192,11 +193,11 @@ def test_a_broken_subcommand_module_does_not_take_the_others_down(monkeypatch, c
         raise ImportError("no module named 'something'")
     import types
     import sys
-    mod = types.ModuleType("comparisons.broken")
+    mod = types.ModuleType("comparisons.cli.broken")
     mod.add_parser = broken
-    mod.main = lambda args: 0
-    monkeypatch.setitem(sys.modules, "comparisons.broken", mod)
-    monkeypatch.setattr(cli, "SUBCOMMANDS", cli.SUBCOMMANDS + [cli.module_subcommand("broken")])
+    mod.run = lambda args: 0
+    monkeypatch.setitem(sys.modules, "comparisons.cli.broken", mod)
+    monkeypatch.setattr(cli, "SUBCOMMANDS", cli.SUBCOMMANDS + (mod,))
     assert cli.main(["point", "--solver", "analytic", "--load", "0.3", "--speed", "1"]) == 0
     capsys.readouterr()
     assert cli.main(["broken", "--anything"]) == 1
@@ -218,7 +219,7 @@ def test_help_of_point_and_sweep_shows_the_accepted_range_of_each_input(capsys):
                             ("--prony", "material")):
             for road, table in (("analytic", analytic.ACCEPTED), ("bem", bem.ACCEPTED)):
                 if key in table:
-                    allowed = " ".join(cli._allowed(table[key][2]).split())
+                    allowed = " ".join(_common._allowed(table[key][2]).split())
                     assert f"{road}: {allowed}" in text, (name, option, road)
         assert "analytic: a mean pressure p̃∞ = p∞(1 − ν²)/E0 in [1e-40, 1e+40]" in text
         assert "bem: E∞/E0 > 1 + 1e-12 and ≤ 10000" in text

@@ -305,7 +305,7 @@ def test_the_bems_own_scalars_pass_by_default(tmp_path, capsys):
     case, n = "sls-ratio1000", 1024
     point, _ = verify.point_from_case(case)
     own = suite.bem_solution(point, n, base="/").scalars()
-    keep = {k: v for k, v in own.items() if k in verify.SCALAR_KEYS and v is not None}
+    keep = {k: v for k, v in own.items() if k in verify.COMPARED_KEYS and v is not None}
     path = tmp_path / "s.jsonl"
     path.write_text(json.dumps({"nodes": n, **keep}) + "\n", encoding="utf-8")
     rc, out, err = _run(capsys, "--case", case, "--scalars", str(path), "--out",

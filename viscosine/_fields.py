@@ -16,6 +16,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ._checks import integer
+
 #: units of the four arrays, by `Fields.units`
 UNITS = {
     "conventions": {"x_over_lambda": "x/λ (crest at 0)", "pressure": "σ(1 − ν²)/E0",
@@ -277,12 +279,10 @@ class Fields:
         Fields
             Uniform (no edges), in the same units.
         """
-        if isinstance(n, bool) or not isinstance(n, (int, np.integer)) or n < 1:
-            raise ValueError(f"n={n!r} is not allowed: an integer ≥ 1")
+        n = integer("n", n, "an integer ≥ 1", lambda v: v >= 1)
         if method not in RESAMPLE_METHODS:
             raise ValueError(f"method={method!r} is not allowed: one of "
                              f"{', '.join(RESAMPLE_METHODS)}")
-        n = int(n)
         X = np.arange(n) / n - 0.5
         if method == "linear":
             cols = [np.interp(X, self.x_over_lambda, getattr(self, c), period=PERIOD)

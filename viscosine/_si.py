@@ -15,19 +15,8 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import real
 from ._fields import Fields
-
-
-def _real(name, value, unit, test, allowed):
-    if isinstance(value, bool):
-        raise ValueError(f"{name}={value!r} is not allowed: {allowed} [{unit}]")
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name}={value!r} is not allowed: {allowed} [{unit}]") from None
-    if not (math.isfinite(v) and test(v)):
-        raise ValueError(f"{name}={value!r} is not allowed: {allowed} [{unit}]")
-    return v
 
 
 @dataclass(frozen=True)
@@ -68,9 +57,9 @@ def creep_time(*, E0, Einf, tau=None, tau_creep=None, tau_relax=None) -> float:
                          "tau_relax (its relaxation time, tau_creep E0/Einf) [s]")
     (name, value), = given.items()
     if name == "tau_relax":
-        t = _real(name, value, "s", lambda v: v > 0.0, "a finite relaxation time > 0")
+        t = real(name, value, "a finite relaxation time > 0", lambda v: v > 0.0, unit="s")
         return t * (Einf / E0)
-    return _real(name, value, "s", lambda v: v > 0.0, "a finite creep (retardation) time > 0")
+    return real(name, value, "a finite creep (retardation) time > 0", lambda v: v > 0.0, unit="s")
 
 
 def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressure=None,
@@ -80,8 +69,8 @@ def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressur
     The solid's time is exactly one of ``tau_creep`` (alias ``tau``) and ``tau_relax``
     (`creep_time`); the speed group is V τ k with τ the creep time.
     """
-    E0 = _real("E0", E0, "Pa", lambda v: v > 0.0, "a finite modulus > 0")
-    Einf = _real("Einf", Einf, "Pa", lambda v: v > E0, f"a finite modulus > E0 = {E0!r}")
+    E0 = real("E0", E0, "a finite modulus > 0", lambda v: v > 0.0, unit="Pa")
+    Einf = real("Einf", Einf, f"a finite modulus > E0 = {E0!r}", lambda v: v > E0, unit="Pa")
     tau = creep_time(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax)
     return _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration,
                    ratio=Einf / E0, given_ratio=Einf)
@@ -94,18 +83,18 @@ def material_scales(*, E_ref, tau_ref=1.0, nu, wavelength, amplitude, speed, mea
 
     ``amplitude`` is h = max(y) − mean(y) of the profile [m].  Raises as `scales`.
     """
-    E_ref = _real("E_ref", E_ref, "Pa", lambda v: v > 0.0, "a finite relaxed modulus > 0")
-    tau_ref = _real("tau_ref", tau_ref, "s", lambda v: v > 0.0, "a finite time > 0")
+    E_ref = real("E_ref", E_ref, "a finite relaxed modulus > 0", lambda v: v > 0.0, unit="Pa")
+    tau_ref = real("tau_ref", tau_ref, "a finite time > 0", lambda v: v > 0.0, unit="s")
     return _scales(E_ref, tau_ref, nu, wavelength, amplitude, speed, mean_pressure, penetration,
                    ratio=None, given_ratio=None)
 
 
 def _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration, *, ratio,
             given_ratio) -> SIScales:
-    nu = _real("nu", nu, "-", lambda v: -1.0 < v <= 0.5, "a Poisson ratio in (-1, 0.5]")
-    lam = _real("wavelength", wavelength, "m", lambda v: v > 0.0, "a finite length > 0")
-    h = _real("amplitude", amplitude, "m", lambda v: v > 0.0, "a finite length > 0")
-    V = _real("speed", speed, "m/s", lambda v: v >= 0.0, "a finite speed >= 0")
+    nu = real("nu", nu, "a Poisson ratio in (-1, 0.5]", lambda v: -1.0 < v <= 0.5, unit="-")
+    lam = real("wavelength", wavelength, "a finite length > 0", lambda v: v > 0.0, unit="m")
+    h = real("amplitude", amplitude, "a finite length > 0", lambda v: v > 0.0, unit="m")
+    V = real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0, unit="m/s")
     if (mean_pressure is None) == (penetration is None):
         raise ValueError(f"mean_pressure={mean_pressure!r}, penetration={penetration!r} is not "
                          "allowed: give exactly one of mean_pressure [Pa] and penetration [m]")
@@ -113,10 +102,11 @@ def _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetratio
     estar = E0 / (1.0 - nu * nu)
     load = pen = None
     if mean_pressure is not None:
-        load = _real("mean_pressure", mean_pressure, "Pa", lambda v: v > 0.0, "a finite pressure > 0") / estar
+        load = real("mean_pressure", mean_pressure, "a finite pressure > 0", lambda v: v > 0.0,
+                    unit="Pa") / estar
     else:
-        pen = _real("penetration", penetration, "m", lambda v: 0.0 < v <= h,
-                    f"a finite depth in (0, amplitude = {h!r}]") / h
+        pen = real("penetration", penetration, f"a finite depth in (0, amplitude = {h!r}]",
+                   lambda v: 0.0 < v <= h, unit="m") / h
     given = {"load": mean_pressure, "penetration": penetration, "speed": speed,
              "ratio": given_ratio, "hk": amplitude}
     return SIScales(ratio, h * k, V * tau * k, load, pen, k, estar, lam, h, tau, given)

@@ -54,47 +54,14 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ._checks import bad, real, reals, series
+
 #: fewest points of a DMA curve (and of a shift table's pair of columns) that are accepted
 MIN_POINTS = 5
 #: modulus units a DMA header may name (``storage [MPa]``), in pascals (matched ignoring case)
 PASCALS = {"pa": 1.0, "kpa": 1e3, "mpa": 1e6, "gpa": 1e9, "n/mm2": 1e6, "n/mm^2": 1e6}
 #: the forms of a material file `material_form` tells apart
 FORMS = ("creep", "relaxation", "dma")
-
-
-def _bad(name, value, allowed) -> ValueError:
-    """The refusal ``name=value is not allowed: ...``, on one line (long values cut short)."""
-    shown = " ".join(repr(value).split())
-    if len(shown) > 100:
-        shown = shown[:96] + " ..."
-    return ValueError(f"{name}={shown} is not allowed: {allowed}")
-
-
-def _real(name, value, test, allowed) -> float:
-    """``value`` as a finite float passing ``test``, else the refusal."""
-    if isinstance(value, (bool, np.bool_)):
-        raise _bad(name, value, allowed)
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise _bad(name, value, allowed) from None
-    if not (math.isfinite(v) and test(v)):
-        raise _bad(name, value, allowed)
-    return v
-
-
-def _series(name, values, test, allowed) -> tuple:
-    """A 1-D sequence of finite floats each passing ``test``, as a tuple."""
-    try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise _bad(name, values, allowed) from None
-    if arr.ndim > 1:
-        raise _bad(name, values, "a 1-D sequence; " + allowed)
-    arr = np.atleast_1d(arr)
-    if not all(math.isfinite(v) and test(v) for v in arr.tolist()):
-        raise _bad(name, values, allowed)
-    return tuple(arr.tolist())
 
 
 # --------------------------------------------------------------------------
@@ -300,16 +267,15 @@ class Maxwell:
     fit: FitReport | None = field(default=None, compare=False, repr=False)
 
     def __post_init__(self):
-        e_r = _real("E_r", self.E_r, lambda v: v > 0.0, "a finite relaxed modulus E_r > 0")
-        ee = _series("E", self.E, lambda v: v >= 0.0, "finite amplitudes E_i >= 0")
-        tt = _series("theta", self.theta, lambda v: v > 0.0,
-                     "finite relaxation times theta_i > 0")
+        e_r = real("E_r", self.E_r, "a finite relaxed modulus E_r > 0", lambda v: v > 0.0)
+        ee = series("E", self.E, "finite amplitudes E_i >= 0", lambda v: v >= 0.0)
+        tt = series("theta", self.theta, "finite relaxation times theta_i > 0", lambda v: v > 0.0)
         if len(ee) != len(tt):
-            raise _bad("E", self.E, f"one amplitude per relaxation time (got {len(ee)} "
-                       f"amplitudes and {len(tt)} times)")
+            raise bad("E", self.E, f"one amplitude per relaxation time (got {len(ee)} "
+                      f"amplitudes and {len(tt)} times)")
         if self.temperature is not None:
-            object.__setattr__(self, "temperature", _real(
-                "temperature", self.temperature, lambda v: True, "a finite temperature or None"))
+            object.__setattr__(self, "temperature", real(
+                "temperature", self.temperature, "a finite temperature or None"))
         object.__setattr__(self, "E_r", e_r)
         object.__setattr__(self, "E", ee)
         object.__setattr__(self, "theta", tt)
@@ -382,8 +348,8 @@ class Maxwell:
         formed as ``J0 - sum J_k`` carries the cancellation ``~ eps * glassy/E_r`` that any
         ``(J0, J_k)`` representation carries.
         """
-        e_ref = _real("E_ref", E_ref, lambda v: v > 0.0, "a finite modulus unit > 0")
-        t_ref = _real("tau_ref", tau_ref, lambda v: v > 0.0, "a finite time unit > 0")
+        e_ref = real("E_ref", E_ref, "a finite modulus unit > 0", lambda v: v > 0.0)
+        t_ref = real("tau_ref", tau_ref, "a finite time unit > 0", lambda v: v > 0.0)
         c, t = _merged(self.E, self.theta)
         j0 = 1.0 / self.E_r
         if not c.size:
@@ -414,15 +380,15 @@ class Maxwell:
             ``E_r = 1/J0``, relaxation times ascending (moduli in the inverse unit of the
             compliances, times in the unit of tau).
         """
-        j0 = _real("J0", J0, lambda v: v > 0.0, "a finite relaxed compliance J0 > 0")
-        jj = _series("J", J, lambda v: v >= 0.0, "finite amplitudes J_k >= 0")
-        tt = _series("tau", tau, lambda v: v > 0.0, "finite retardation times tau_k > 0")
+        j0 = real("J0", J0, "a finite relaxed compliance J0 > 0", lambda v: v > 0.0)
+        jj = series("J", J, "finite amplitudes J_k >= 0", lambda v: v >= 0.0)
+        tt = series("tau", tau, "finite retardation times tau_k > 0", lambda v: v > 0.0)
         if len(jj) != len(tt):
-            raise _bad("J", J, f"one amplitude per retardation time (got {len(jj)} amplitudes "
-                       f"and {len(tt)} times)")
+            raise bad("J", J, f"one amplitude per retardation time (got {len(jj)} amplitudes "
+                      f"and {len(tt)} times)")
         j_plus = j0 - math.fsum(jj)
         if not j_plus > 0.0:
-            raise _bad("J0", J0, f"J(0+) = J0 - sum(J_k) = {j_plus!r} must be > 0")
+            raise bad("J0", J0, f"J(0+) = J0 - sum(J_k) = {j_plus!r} must be > 0")
         c, t = _merged(jj, tt)
         if not c.size:
             return cls(1.0 / j0)
@@ -453,9 +419,10 @@ class Maxwell:
             fitted to data); otherwise one line saying by how many decades, on which side, the
             modulus is extrapolated.
         """
-        lo = _real("omega_lo", omega_lo, lambda v: v > 0.0, "a finite frequency > 0")
-        hi = lo if omega_hi is None else _real("omega_hi", omega_hi, lambda v: v >= lo,
-                                               f"a finite frequency >= omega_lo={lo!r}")
+        lo = real("omega_lo", omega_lo, "a finite frequency > 0", lambda v: v > 0.0)
+        hi = lo if omega_hi is None else real("omega_hi", omega_hi,
+                                              f"a finite frequency >= omega_lo={lo!r}",
+                                              lambda v: v >= lo)
         if self.fit is None:
             return None
         w0, w1 = self.fit.window
@@ -490,7 +457,7 @@ class Maxwell:
             series' own temperature; the reference when None), the measured window divided by
             the same factor.
         """
-        T = _real("T", T, lambda v: True, "a finite temperature")
+        T = real("T", T, "a finite temperature")
         log_a = float(shift.log10_aT(T))
         if self.temperature is not None:
             log_a -= float(shift.log10_aT(self.temperature))
@@ -522,8 +489,8 @@ class Maxwell:
         unit = self.fit.modulus_unit
         factor = None if unit is None else PASCALS.get(unit.strip().lower())
         if factor is None:
-            raise _bad("modulus_unit", unit, "a modulus unit the DMA header names, one of Pa, "
-                       "kPa, MPa, GPa (e.g. 'storage [MPa]'), to express the fit in pascals")
+            raise bad("modulus_unit", unit, "a modulus unit the DMA header names, one of Pa, "
+                      "kPa, MPa, GPa (e.g. 'storage [MPa]'), to express the fit in pascals")
         fit = replace(self.fit, modulus_unit="Pa")
         return Maxwell(self.E_r * factor, tuple(e * factor for e in self.E), self.theta,
                        temperature=self.temperature, fit=fit)
@@ -558,13 +525,13 @@ def _data_lines(path, option: str) -> list:
     try:
         data = Path(path).read_bytes()
     except OSError as exc:
-        raise _bad(option, where, f"a readable file ({exc.strerror or exc})") from None
+        raise bad(option, where, f"a readable file ({exc.strerror or exc})") from None
     if b"\0" in data:
-        raise _bad(option, where, "a UTF-8 text file (this one is binary: NUL bytes)")
+        raise bad(option, where, "a UTF-8 text file (this one is binary: NUL bytes)")
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise _bad(option, where, f"a UTF-8 text file (byte {exc.start} is not UTF-8)") from None
+        raise bad(option, where, f"a UTF-8 text file (byte {exc.start} is not UTF-8)") from None
     rows = []
     for number, raw in enumerate(text.lstrip("\ufeff").splitlines(), start=1):
         line = raw.split("#", 1)[0].strip()
@@ -586,8 +553,8 @@ def _read_table(path, option: str, columns: dict):
     rows = _data_lines(path, option)
     need = ", ".join(columns)
     if not rows:
-        raise _bad(option, where, f"a header line naming the columns {need}, then data (this "
-                   "file is empty or only comments)")
+        raise bad(option, where, f"a header line naming the columns {need}, then data (this "
+                  "file is empty or only comments)")
     head_line, head = rows[0]
     names = [_column_name(h) for h in head]
     index = {}
@@ -595,24 +562,24 @@ def _read_table(path, option: str, columns: dict):
         hits = [i for i, (nm, _) in enumerate(names) if nm in aliases]
         if len(hits) != 1:
             what = "no" if not hits else "more than one"
-            raise _bad(option, where, f"a header line naming the columns {need} (line "
-                       f"{head_line} has {what} column {key!r}: {', '.join(head)})")
+            raise bad(option, where, f"a header line naming the columns {need} (line "
+                      f"{head_line} has {what} column {key!r}: {', '.join(head)})")
         index[key] = hits[0]
     out = {key: [] for key in columns}
     lines = []
     for number, fields in rows[1:]:
         if len(fields) != len(head):
-            raise _bad(option, where, f"{len(head)} fields on every line, as in the header "
-                       f"(line {number} has {len(fields)})")
+            raise bad(option, where, f"{len(head)} fields on every line, as in the header "
+                      f"(line {number} has {len(fields)})")
         for key, i in index.items():
             tok = fields[i]
             try:
                 v = float(tok)
             except ValueError:
-                raise _bad(option, where, f"numeric data (line {number}: {key} {tok!r} is not "
-                           "a number)") from None
+                raise bad(option, where, f"numeric data (line {number}: {key} {tok!r} is not "
+                          "a number)") from None
             if not math.isfinite(v):
-                raise _bad(option, where, f"finite numbers (line {number}: {key} is {tok!r})")
+                raise bad(option, where, f"finite numbers (line {number}: {key} is {tok!r})")
             out[key].append(v)
         lines.append(number)
     units = {key: names[i][1] for key, i in index.items()}
@@ -652,12 +619,12 @@ def read_relaxation(path) -> Maxwell:
     rows = [(n, [t for f in fields for t in f.split()]) for n, fields in
             _data_lines(path, "relaxation")]
     if not rows:
-        raise _bad("relaxation", where, "a first line 'E_r <value>' then lines 'E_i theta_i' "
-                   "(this file is empty or only comments)")
+        raise bad("relaxation", where, "a first line 'E_r <value>' then lines 'E_i theta_i' "
+                  "(this file is empty or only comments)")
     first_line, first = rows[0]
     if first[0].lower() not in ("e_r", "er") or len(first) != 2:
-        raise _bad("relaxation", where, f"a first line 'E_r <value>' then lines 'E_i theta_i' "
-                   f"(line {first_line}: {' '.join(first)!r})")
+        raise bad("relaxation", where, f"a first line 'E_r <value>' then lines 'E_i theta_i' "
+                  f"(line {first_line}: {' '.join(first)!r})")
 
     def numbers(number, tokens):
         out = []
@@ -665,28 +632,28 @@ def read_relaxation(path) -> Maxwell:
             try:
                 v = float(tok)
             except ValueError:
-                raise _bad("relaxation", where, f"numeric fields (line {number}: {tok!r} is "
-                           "not a number)") from None
+                raise bad("relaxation", where, f"numeric fields (line {number}: {tok!r} is "
+                          "not a number)") from None
             if not math.isfinite(v):
-                raise _bad("relaxation", where, f"finite numbers (line {number}: {tok!r})")
+                raise bad("relaxation", where, f"finite numbers (line {number}: {tok!r})")
             out.append(v)
         return out
 
     (e_r,) = numbers(first_line, first[1:])
     if not e_r > 0.0:
-        raise _bad("relaxation", where, f"a relaxed modulus E_r > 0 (line {first_line}: "
-                   f"{e_r!r})")
+        raise bad("relaxation", where, f"a relaxed modulus E_r > 0 (line {first_line}: "
+                  f"{e_r!r})")
     amps, times = [], []
     for number, fields in rows[1:]:
         if len(fields) != 2:
-            raise _bad("relaxation", where, f"exactly two numbers 'E_i theta_i' per term line "
-                       f"(line {number} has {len(fields)})")
+            raise bad("relaxation", where, f"exactly two numbers 'E_i theta_i' per term line "
+                      f"(line {number} has {len(fields)})")
         e, th = numbers(number, fields)
         if not e >= 0.0:
-            raise _bad("relaxation", where, f"amplitudes E_i >= 0 (line {number}: {e!r})")
+            raise bad("relaxation", where, f"amplitudes E_i >= 0 (line {number}: {e!r})")
         if not th > 0.0:
-            raise _bad("relaxation", where, f"relaxation times theta_i > 0 (line {number}: "
-                       f"{th!r})")
+            raise bad("relaxation", where, f"relaxation times theta_i > 0 (line {number}: "
+                      f"{th!r})")
         amps.append(e)
         times.append(th)
     return Maxwell(e_r, tuple(amps), tuple(times))
@@ -711,7 +678,7 @@ def material_form(path) -> str:
                 "'E_r <value>') or a DMA master curve (a CSV header naming frequency, storage, "
                 "loss)")
     if not rows:
-        raise _bad("material", where, f"{accepted} (this file is empty or only comments)")
+        raise bad("material", where, f"{accepted} (this file is empty or only comments)")
     number, fields = rows[0]
     tokens = [t for f in fields for t in f.split()]
     key = tokens[0].lower()
@@ -725,7 +692,7 @@ def material_form(path) -> str:
     shown = " ".join(tokens)
     if len(shown) > 40:
         shown = shown[:36] + " ..."
-    raise _bad("material", where, f"{accepted} (line {number} begins {shown!r})")
+    raise bad("material", where, f"{accepted} (line {number} begins {shown!r})")
 
 
 # --------------------------------------------------------------------------
@@ -750,9 +717,9 @@ def _check_curve(omega, storage, loss, noise, where):
     if omega.size < MIN_POINTS:
         raise ValueError(where(None, f"at least {MIN_POINTS} points (got {omega.size})"))
     for name, arr in (("frequency", omega), ("storage", storage), ("loss", loss)):
-        bad = ~np.isfinite(arr)
-        if bad.any():
-            j = int(np.flatnonzero(bad)[0])
+        wrong = ~np.isfinite(arr)
+        if wrong.any():
+            j = int(np.flatnonzero(wrong)[0])
             raise ValueError(where(j, f"finite values ({name} is {float(arr[j])!r})"))
     checks = [
         (omega <= 0.0, lambda j: f"frequencies > 0 (frequency {float(omega[j])!r})"),
@@ -760,9 +727,9 @@ def _check_curve(omega, storage, loss, noise, where):
         (loss <= 0.0, lambda j: f"a loss modulus > 0: a solid that dissipates "
                                 f"(loss {float(loss[j])!r})"),
     ]
-    for bad, text in checks:
-        if bad.any():
-            j = int(np.flatnonzero(bad)[0])
+    for wrong, text in checks:
+        if wrong.any():
+            j = int(np.flatnonzero(wrong)[0])
             raise ValueError(where(j, text(j)))
     step = np.diff(omega)
     if (step <= 0.0).any():
@@ -821,25 +788,21 @@ class MasterCurve:
     modulus_unit: str | None = None
 
     def __post_init__(self):
-        noise = _real("noise", self.noise, lambda v: 0.0 <= v < 1.0,
-                      "a relative scatter in [0, 1)")
+        noise = real("noise", self.noise, "a relative scatter in [0, 1)", lambda v: 0.0 <= v < 1.0)
         arrays = {}
         for name in ("omega", "storage", "loss"):
             value = getattr(self, name)
-            try:
-                arr = np.array(value, dtype=float).ravel()
-            except (TypeError, ValueError):
-                raise _bad(name, value, "a 1-D sequence of numbers") from None
+            arr = reals(name, value, "a 1-D sequence of numbers").ravel()
             arr.flags.writeable = False
             arrays[name] = arr
         sizes = [a.size for a in arrays.values()]
         if len(set(sizes)) != 1:
-            raise _bad("storage", self.storage, "as many values as omega and loss (sizes of "
-                       f"omega, storage, loss: {sizes})")
+            raise bad("storage", self.storage, "as many values as omega and loss (sizes of "
+                      f"omega, storage, loss: {sizes})")
 
         def where(j, text):
             if j is None:
-                return str(_bad("omega", self.omega, text))
+                return str(bad("omega", self.omega, text))
             return f"omega[{j}]={float(arrays['omega'][j])!r} is not allowed: {text}"
         _check_curve(arrays["omega"], arrays["storage"], arrays["loss"], noise, where)
         for name, arr in arrays.items():
@@ -908,34 +871,34 @@ def read_dma(path, *, kind: str = "E", nu=None, frequency_unit: str | None = Non
         refusal of `MasterCurve`.
     """
     if kind not in ("E", "G"):
-        raise _bad("kind", kind, "'E' (tensile moduli) or 'G' (shear moduli)")
+        raise bad("kind", kind, "'E' (tensile moduli) or 'G' (shear moduli)")
     if frequency_unit not in (None, "rad/s", "Hz"):
-        raise _bad("frequency_unit", frequency_unit, "'rad/s' (angular) or 'Hz' (cycles), or "
-                   "None (the header's unit)")
+        raise bad("frequency_unit", frequency_unit, "'rad/s' (angular) or 'Hz' (cycles), or "
+                  "None (the header's unit)")
     if kind == "G":
         if nu is None:
-            raise _bad("nu", nu, "a Poisson ratio in (-1, 0.5] to turn shear moduli into "
-                       "tensile ones (kind='G')")
-        nu = _real("nu", nu, lambda v: -1.0 < v <= 0.5, "a Poisson ratio in (-1, 0.5]")
+            raise bad("nu", nu, "a Poisson ratio in (-1, 0.5] to turn shear moduli into "
+                      "tensile ones (kind='G')")
+        nu = real("nu", nu, "a Poisson ratio in (-1, 0.5]", lambda v: -1.0 < v <= 0.5)
         factor = 2.0 * (1.0 + nu)
     else:
         if nu is not None:
-            raise _bad("nu", nu, "None with kind='E' (nu converts shear moduli; the file "
-                       "holds tensile ones)")
+            raise bad("nu", nu, "None with kind='E' (nu converts shear moduli; the file "
+                      "holds tensile ones)")
         factor = 1.0
-    noise = _real("noise", noise, lambda v: 0.0 <= v < 1.0, "a relative scatter in [0, 1)")
+    noise = real("noise", noise, "a relative scatter in [0, 1)", lambda v: 0.0 <= v < 1.0)
     cols, lines, units = _read_table(path, "dma", _DMA_COLUMNS)
     stated = {"hz": "Hz", "rad/s": "rad/s"}.get((units["frequency"] or "").lower())
     if frequency_unit is None:
         frequency_unit = stated or "rad/s"
     elif stated is not None and stated != frequency_unit:
-        raise _bad("frequency_unit", frequency_unit, f"the unit of the file's frequency column "
+        raise bad("frequency_unit", frequency_unit, f"the unit of the file's frequency column "
                    f"({units['frequency']!r} in {str(path)!r}), or None")
     omega = cols["frequency"] * (2.0 * math.pi if frequency_unit == "Hz" else 1.0)
     storage, loss = cols["storage"] * factor, cols["loss"] * factor
     given = {u for u in (units["storage"], units["loss"]) if u}
     if len(given) > 1:
-        raise _bad("dma", str(path), f"storage and loss in one unit (the header gives "
+        raise bad("dma", str(path), f"storage and loss in one unit (the header gives "
                    f"{units['storage']!r} and {units['loss']!r}: a silent factor otherwise)")
     modulus_unit = given.pop() if given else None
 
@@ -991,12 +954,11 @@ def fit_prony(curve: MasterCurve, *, per_decade: float = 2, extend: float = 1.0,
     from scipy.optimize import nnls
 
     if not isinstance(curve, MasterCurve):
-        raise _bad("curve", curve, "a MasterCurve (see read_dma)")
-    per_decade = _real("per_decade", per_decade, lambda v: 0.5 <= v <= 20.0,
-                       "relaxation times per decade in [0.5, 20]")
-    extend = _real("extend", extend, lambda v: 0.0 <= v <= 5.0, "decades in [0, 5]")
-    bound = _real("max_residual", max_residual, lambda v: v > 0.0,
-                  "a relative residual bound > 0")
+        raise bad("curve", curve, "a MasterCurve (see read_dma)")
+    per_decade = real("per_decade", per_decade, "relaxation times per decade in [0.5, 20]",
+                      lambda v: 0.5 <= v <= 20.0)
+    extend = real("extend", extend, "decades in [0, 5]", lambda v: 0.0 <= v <= 5.0)
+    bound = real("max_residual", max_residual, "a relative residual bound > 0", lambda v: v > 0.0)
     w, e1, e2 = curve.omega, curve.storage, curve.loss
     lo = -math.log10(w[-1]) - extend
     hi = -math.log10(w[0]) + extend
@@ -1013,7 +975,7 @@ def fit_prony(curve: MasterCurve, *, per_decade: float = 2, extend: float = 1.0,
     z, _ = nnls(a / scale, np.ones(2 * w.size), maxiter=50 * (count + 1))
     coef = z / scale
     if not coef[0] > 0.0:
-        raise _bad("curve", curve.source or "MasterCurve", "data that reach a relaxed "
+        raise bad("curve", curve.source or "MasterCurve", "data that reach a relaxed "
                    "(rubbery) plateau: the fit gives E_r = 0, a fluid, below the lowest "
                    f"frequency {w[0]:.3g}")
     keep = coef[1:] > 0.0
@@ -1030,7 +992,7 @@ def fit_prony(curve: MasterCurve, *, per_decade: float = 2, extend: float = 1.0,
                        tan_delta_rms=stats[2][1], bound=bound, source=curve.source,
                        modulus_unit=curve.modulus_unit)
     if report.max_residual > bound:
-        raise _bad("max_residual", bound, f"a bound the fit meets: the best non-negative "
+        raise bad("max_residual", bound, f"a bound the fit meets: the best non-negative "
                    f"Prony series with {per_decade:g} times per decade misses the data by "
                    f"{100 * report.max_residual:.3g} % (E' {100 * report.storage_max:.3g} %, "
                    f"E'' {100 * report.loss_max:.3g} %); more times per decade, or data a "
@@ -1065,21 +1027,22 @@ class WLF:
     T_ref: float
 
     def __post_init__(self):
-        object.__setattr__(self, "C1", _real("C1", self.C1, lambda v: v > 0.0, "a finite C1 > 0"))
-        object.__setattr__(self, "C2", _real("C2", self.C2, lambda v: v > 0.0,
-                                             "a finite C2 > 0 (in the temperature unit)"))
-        object.__setattr__(self, "T_ref", _real("T_ref", self.T_ref, lambda v: True,
-                                                "a finite reference temperature"))
+        object.__setattr__(self, "C1", real("C1", self.C1, "a finite C1 > 0", lambda v: v > 0.0))
+        object.__setattr__(self, "C2", real("C2", self.C2,
+                                            "a finite C2 > 0 (in the temperature unit)",
+                                            lambda v: v > 0.0))
+        object.__setattr__(self, "T_ref", real("T_ref", self.T_ref,
+                                               "a finite reference temperature"))
 
     def log10_aT(self, T):
         """``log10 a_T`` at T (scalar or array); T must be above ``T_ref - C2``."""
-        arr = np.asarray(T, dtype=float)
+        arr = reals("T", T, "temperatures")
         dt = arr - self.T_ref
-        bad = ~(np.isfinite(arr) & (self.C2 + dt > 0.0))
-        if bad.any():
-            v = float(arr.ravel()[np.flatnonzero(bad.ravel())[0]])
-            raise _bad("T", v, f"a finite temperature above the WLF pole T_ref - C2 = "
-                       f"{self.T_ref - self.C2!r}")
+        outside = ~(np.isfinite(arr) & (self.C2 + dt > 0.0))
+        if outside.any():
+            v = float(arr.ravel()[np.flatnonzero(outside.ravel())[0]])
+            raise bad("T", v, f"a finite temperature above the WLF pole T_ref - C2 = "
+                      f"{self.T_ref - self.C2!r}")
         out = -self.C1 * dt / (self.C2 + dt)
         return float(out) if out.ndim == 0 else out
 
@@ -1108,28 +1071,28 @@ class ShiftTable:
     log_aT: tuple
 
     def __post_init__(self):
-        tt = _series("T", self.T, lambda v: True, "finite temperatures")
-        ll = _series("log_aT", self.log_aT, lambda v: True, "finite values of log10 a_T")
+        tt = series("T", self.T, "finite temperatures")
+        ll = series("log_aT", self.log_aT, "finite values of log10 a_T")
         if len(tt) != len(ll):
-            raise _bad("log_aT", self.log_aT, f"one value per temperature ({len(tt)})")
+            raise bad("log_aT", self.log_aT, f"one value per temperature ({len(tt)})")
         if len(tt) < 2:
-            raise _bad("T", self.T, "at least 2 temperatures")
+            raise bad("T", self.T, "at least 2 temperatures")
         if any(b <= a for a, b in zip(tt, tt[1:])):
-            raise _bad("T", self.T, "strictly increasing temperatures")
+            raise bad("T", self.T, "strictly increasing temperatures")
         if any(b >= a for a, b in zip(ll, ll[1:])):
-            raise _bad("log_aT", self.log_aT, "log10 a_T strictly decreasing with T "
-                       "(relaxation is faster when hot)")
+            raise bad("log_aT", self.log_aT, "log10 a_T strictly decreasing with T "
+                      "(relaxation is faster when hot)")
         object.__setattr__(self, "T", tt)
         object.__setattr__(self, "log_aT", ll)
 
     def log10_aT(self, T):
         """``log10 a_T`` at T (scalar or array) inside the table."""
-        arr = np.asarray(T, dtype=float)
-        bad = ~(np.isfinite(arr) & (arr >= self.T[0]) & (arr <= self.T[-1]))
-        if bad.any():
-            v = float(arr.ravel()[np.flatnonzero(bad.ravel())[0]])
-            raise _bad("T", v, f"a temperature inside the shift table [{self.T[0]!r}, "
-                       f"{self.T[-1]!r}] (no extrapolation)")
+        arr = reals("T", T, "temperatures")
+        outside = ~(np.isfinite(arr) & (arr >= self.T[0]) & (arr <= self.T[-1]))
+        if outside.any():
+            v = float(arr.ravel()[np.flatnonzero(outside.ravel())[0]])
+            raise bad("T", v, f"a temperature inside the shift table [{self.T[0]!r}, "
+                      f"{self.T[-1]!r}] (no extrapolation)")
         out = np.interp(arr, self.T, self.log_aT)
         return float(out) if np.ndim(out) == 0 else out
 
@@ -1162,13 +1125,13 @@ def read_shift_table(path) -> ShiftTable:
     cols, lines, _ = _read_table(path, "shift_table", _SHIFT_COLUMNS)
     t, log_a = cols["temperature"], cols["log_aT"]
     if t.size < 2:
-        raise _bad("shift_table", str(path), f"at least 2 temperatures (got {t.size})")
+        raise bad("shift_table", str(path), f"at least 2 temperatures (got {t.size})")
     for j in range(1, t.size):
         if t[j] <= t[j - 1]:
-            raise _bad("shift_table", str(path), f"strictly increasing temperatures (line "
-                       f"{lines[j]}: {t[j]!r} after {t[j - 1]!r})")
+            raise bad("shift_table", str(path), f"strictly increasing temperatures (line "
+                      f"{lines[j]}: {t[j]!r} after {t[j - 1]!r})")
         if log_a[j] >= log_a[j - 1]:
-            raise _bad("shift_table", str(path), f"log10 a_T strictly decreasing with T "
-                       f"(line {lines[j]}: {log_a[j]!r} after {log_a[j - 1]!r}; relaxation is "
-                       "faster when hot)")
+            raise bad("shift_table", str(path), f"log10 a_T strictly decreasing with T "
+                      f"(line {lines[j]}: {log_a[j]!r} after {log_a[j - 1]!r}; relaxation is "
+                      "faster when hot)")
     return ShiftTable(tuple(t.tolist()), tuple(log_a.tolist()))

@@ -61,7 +61,6 @@ material), eq. (3.1) and Appendix A (Westergaard's limits), the definitions of a
 from __future__ import annotations
 
 import math
-import numbers
 import time
 from dataclasses import asdict, dataclass, field
 
@@ -69,7 +68,10 @@ import numpy as np
 
 import viscosine
 from viscosine import Fields
+from viscosine._checks import bad, integer, real, series
 from viscosine._protocol import SCALAR_KEYS, Patch, _plain
+
+from ..fields import true_runs
 
 #: the Tamaas versions this adapter was verified on (its conventions are measured, not assumed)
 TAMAAS_REQUIREMENT = "tamaas>=2.9,<2.10"
@@ -106,34 +108,16 @@ ACCEPTED = {
 }
 
 
-def _bad(name, value, allowed):
-    return ValueError(f"{name}={value!r} is not allowed: {allowed}")
-
-
 def _real(name, value):
     lo, hi, text = ACCEPTED[name]
-    if not isinstance(value, numbers.Real) or isinstance(value, bool):
-        raise _bad(name, value, text)
-    v = float(value)
-    if not math.isfinite(v):
-        raise _bad(name, value, text)
     if name in ("ratio", "dt"):
-        ok = lo < v <= hi
-    else:
-        ok = lo <= v <= hi
-    if not ok:
-        raise _bad(name, value, text)
-    return v
+        return real(name, value, text, lambda v: lo < v <= hi)
+    return real(name, value, text, lambda v: lo <= v <= hi)
 
 
 def _integer(name, value, even=False):
     lo, hi, text = ACCEPTED[name]
-    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
-        raise _bad(name, value, text)
-    v = int(value)
-    if not lo <= v <= hi or (even and v % 2):
-        raise _bad(name, value, text)
-    return v
+    return integer(name, value, text, lambda v: lo <= v <= hi and not (even and v % 2))
 
 
 def validate(*, load=None, speed=None, ratio=None, hk=None, nodes=None, dt=None, tolerance=None,
@@ -276,20 +260,6 @@ class TamaasResult:
 
 
 # ----------------------------------------------------------------------------- measuring
-def _runs(mask):
-    """Maximal runs of True in a periodic boolean array: list of (first, length)."""
-    n = mask.size
-    if mask.all():
-        return [(0, n)]
-    if not mask.any():
-        return []
-    start = int(np.argmin(mask))  # a False node: runs never wrap past it
-    m = np.roll(mask, -start)
-    d = np.diff(np.concatenate(([0], m.astype(np.int8), [0])))
-    firsts, ends = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
-    return [((int(f) + start) % n, int(e - f)) for f, e in zip(firsts, ends)]
-
-
 def _edge_cells(g_near, g_far, s_in, s_next):
     """Where a contact edge lies between the last gap node and the first contact node.
 
@@ -330,7 +300,7 @@ def _measure(sigma, u, gap, h, load):
     out = {"tau_f": tau_f, "tau_abs": tau_abs, "mu": tau_f / load, "separation": s / h,
            "penetration": 1.0 - s / h, "max_pressure": float(sigma[jmax]),
            "x_max_pressure": float(x[jmax]), "load": float(np.mean(sigma))}
-    runs = _runs(contact)
+    runs = true_runs(contact)
     if len(runs) == 1 and runs[0][1] == n:  # full contact: σ̃ is p̃∞ + A cos(kx − δ) exactly
         delta = -float(np.angle(np.sum(sigma * np.exp(-1j * _TWO_PI * x))))
         patch = Patch(-0.5, 0.5, 1.0, out["load"], delta / _TWO_PI, 0.0, math.pi, None, delta)
@@ -445,7 +415,7 @@ def solve(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dt=None, tolerance=1e-10
     for name in ("load", "speed", "ratio", "hk", "nodes", "tolerance", "steady_rtol",
                  "max_periods"):
         if name not in v:
-            raise _bad(name, None, ACCEPTED[name][2])
+            raise bad(name, None, ACCEPTED[name][2])
     load, speed, ratio, hk, n = v["load"], v["speed"], v["ratio"], v["hk"], v["nodes"]
     tolerance, steady_rtol, max_periods = v["tolerance"], v["steady_rtol"], v["max_periods"]
     tm = _import_tamaas()
@@ -631,20 +601,19 @@ def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=
     t_cell = _TWO_PI / (v["speed"] * v["nodes"])
     if dts is None:
         dts = (4.0 * t_cell, 2.0 * t_cell, t_cell)
-    try:
-        dts = sorted((float(d) for d in dts), reverse=True)
-    except (TypeError, ValueError):
-        raise _bad("dts", dts, "a sequence of at least two time steps > 0 (units of τ)") from None
-    if len(dts) < 2:
-        raise _bad("dts", dts, "a sequence of at least two time steps > 0 (units of τ)")
+    allowed = "a sequence of at least two time steps > 0 (units of τ)"
+    steps = sorted(series("dts", dts, allowed), reverse=True)
+    if len(steps) < 2:
+        raise bad("dts", dts, allowed)
+    dts = steps
     for d in dts:
         validate(dt=d)
     t0 = time.perf_counter()
     rows = _study_rows(dts, load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, **options)
     used = [r["dt"] for r in rows]
     if len(set(used)) != len(used):
-        raise _bad("dts", dts, "time steps that stay distinct after snapping to the grid (see "
-                   "solve)")
+        raise bad("dts", dts, "time steps that stay distinct after snapping to the grid (see "
+                  "solve)")
     out = {"inputs": {"load": load, "speed": speed, "ratio": ratio, "hk": hk, "nodes": nodes,
                       "dts": list(dts), **options},
            "rows": rows, "success": all(r["success"] for r in rows)}
@@ -787,30 +756,27 @@ def dt_extrapolation(*, load, speed, ratio=3.0, hk=1.0, nodes=512, cells_per_ste
         Bad input (``cells_per_step``: positive numbers, distinct after snapping).
     """
     v = validate(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes)
-    try:
-        cells = sorted((float(c) for c in cells_per_step), reverse=True)
-    except (TypeError, ValueError):
-        raise _bad("cells_per_step", cells_per_step, "one or more time steps > 0 in cell "
-                   "crossings T/N") from None
-    if not cells or not all(math.isfinite(c) and c > 0.0 for c in cells):
-        raise _bad("cells_per_step", cells_per_step, "one or more time steps > 0 in cell "
-                   "crossings T/N")
+    allowed = "one or more time steps > 0 in cell crossings T/N"
+    cells = sorted(series("cells_per_step", cells_per_step, allowed, lambda c: c > 0.0),
+                   reverse=True)
+    if not cells:
+        raise bad("cells_per_step", cells_per_step, allowed)
     t_cell = _TWO_PI / (v["speed"] * v["nodes"])
     results = []
     rows = _study_rows([c * t_cell for c in cells], progress=progress, results=results,
                        load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, **options)
     used = [r["dt"] for r in rows]
     if len(set(used)) != len(used):
-        raise _bad("cells_per_step", cells_per_step, "time steps that stay distinct after "
-                   "snapping to the grid (see solve)")
+        raise bad("cells_per_step", cells_per_step, "time steps that stay distinct after "
+                  "snapping to the grid (see solve)")
     if len(rows) >= 2:
         ext = extrapolate(rows)
     else:
         ext = {"richardson": {k: rows[0][k] for k in STUDY_KEYS},
                "error": dict.fromkeys(STUDY_KEYS), "order": dict.fromkeys(STUDY_KEYS)}
     ok = all(r.success for r in results)
-    bad = [f"dt = {c:g} T/N: {r.message}" for c, r in zip(cells, results) if not r.success]
-    message = ("; ".join(bad) if bad else
+    failed = [f"dt = {c:g} T/N: {r.message}" for c, r in zip(cells, results) if not r.success]
+    message = ("; ".join(failed) if failed else
                f"{len(rows)} time steps ({', '.join(f'{c:g}' for c in cells)} × T/N), "
                + ("extrapolated to dt → 0" if len(rows) >= 2 else "no extrapolation"))
     return DtExtrapolation(nodes=int(nodes), cells_per_step=tuple(cells), rows=rows,
@@ -825,11 +791,13 @@ def friction_peak(*, load, ratio=3.0, hk=1.0):
 
     A log-spaced scan of 61 speeds over 1e-3 ≤ V/V0 ≤ 1e3, refined by bounded Brent.
     """
-    import analytic  # the comparison layer may import the roads; the adapter itself does not
     from scipy.optimize import minimize_scalar
 
+    from .. import roads  # the comparison layer reaches the roads; the adapter itself does not
+
     def neg_mu(lg):
-        return -analytic.solve(load=load, speed=10.0 ** lg, ratio=ratio, hk=hk).mu
+        return -roads.analytic_solution({"load": load, "speed": 10.0 ** lg, "ratio": ratio,
+                                         "hk": hk}).mu
 
     lgs = np.linspace(-3.0, 3.0, 61)
     vals = [neg_mu(x) for x in lgs]
@@ -865,7 +833,7 @@ def third_code_table(*, load=0.15, ratio=3.0, hk=1.0, speeds=None, nodes=512,
         speed: μ per dt, observed order, Richardson μ and its estimated error, analytic μ,
         relative difference, Δ/h and ka extrapolated and analytic, N, wall time).
     """
-    import analytic
+    from .. import roads
 
     peak, peak_mu = friction_peak(load=load, ratio=ratio, hk=hk)
     if speeds is None:
@@ -875,7 +843,7 @@ def third_code_table(*, load=0.15, ratio=3.0, hk=1.0, speeds=None, nodes=512,
         t_cell = _TWO_PI / (sp * nodes)
         st = dt_study(load=load, speed=sp, ratio=ratio, hk=hk, nodes=nodes,
                       dts=[c * t_cell for c in cells_per_step], mesh_check=mesh_check, **options)
-        a = analytic.solve(load=load, speed=sp, ratio=ratio, hk=hk)
+        a = roads.analytic_solution({"load": load, "speed": sp, "ratio": ratio, "hk": hk})
         for r in st["rows"]:
             rows.append({"speed": sp, **{k: r[k] for k in (
                 "dt", "dt_over_period", "nodes", "mu", "penetration", "ka", "ke_hat", "steps",

@@ -1,13 +1,11 @@
 """Benchmark tables of the BEM road: accuracy, iterations, time, memory, FFT count.
 
-Run as ``python -m comparisons bench-bem`` or
-``python -c "from comparisons._bench_bem import main; main()"``.  Tables go to
-standard output, progress to standard error.  Parameters: standard linear solid
+Run by ``python -m comparisons bench --bem`` (or ``--bem-only``; ``--max-log2n K`` sets the
+large timing run, `tables`).  Tables go to standard output, progress to standard error.  Parameters: standard linear solid
 with E_inf/E0 = 3, hk = 1 (conventions.md); every table states its own.
 """
 from __future__ import annotations
 
-import argparse
 import math
 import platform
 import resource
@@ -19,7 +17,7 @@ import numpy as np
 
 import bem
 
-from .convergence import observed_order
+from ..convergence import observed_order
 
 
 def _progress(msg: str) -> None:
@@ -226,42 +224,20 @@ def table_cost(big_exponent, out) -> None:
           f"{rows['cold'][1] / rows['nested'][1]:.2f} in time", file=out)
 
 
-def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(prog="bench-bem", description=__doc__.splitlines()[0])
-    parser.add_argument("--min-exponent", type=int, default=8, help="smallest N = 2^e (8)")
-    parser.add_argument("--max-exponent", type=int, default=16,
-                        help="largest N = 2^e of the accuracy and iteration tables (16)")
-    parser.add_argument("--big-exponent", type=int, default=20,
-                        help="N = 2^e of the large timing run (20)")
-    parser.add_argument("--load", type=float, default=0.3,
-                        help="load of the elastic-limit table (0.3: partial contact at both ends)")
-    parser.add_argument("--tables", default="limits,full,iterations,timing,cost",
-                        help="comma-separated subset of limits,full,iterations,timing,cost")
-    args = parser.parse_args(argv)
-    if not 3 <= args.min_exponent <= args.max_exponent <= 22 or not 3 <= args.big_exponent <= 22:
+def tables(big_exponent=20, min_exponent=8, max_exponent=16, load=0.3, out=None) -> int:
+    """Print every table: elastic limits (at ``load``: partial contact at both ends) and
+    iterations on N = 2^min_exponent … 2^max_exponent, full contact at N = 1024, timing and
+    cost at N = 2^big_exponent; exit status 0, or 2 for exponents outside [3, 22]."""
+    if not 3 <= min_exponent <= max_exponent <= 22 or not 3 <= big_exponent <= 22:
         print("bench-bem: exponents must satisfy 3 <= min <= max <= 22 and 3 <= big <= 22",
               file=sys.stderr)
         return 2
-    tables = set(args.tables.split(","))
-    unknown = tables - {"limits", "full", "iterations", "timing", "cost"}
-    if unknown:
-        print(f"bench-bem: unknown tables {sorted(unknown)}", file=sys.stderr)
-        return 2
-    exps = range(args.min_exponent, args.max_exponent + 1)
-    out = sys.stdout
+    exps = range(min_exponent, max_exponent + 1)
+    out = sys.stdout if out is None else out
     print("# BEM benchmark", file=out)
-    if "limits" in tables:
-        table_elastic_limits(exps, args.load, out)
-    if "full" in tables:
-        table_full_contact(1024, out)
-    if "iterations" in tables:
-        table_iterations(exps, out)
-    if "timing" in tables:
-        table_timing(args.big_exponent, out)
-    if "cost" in tables:
-        table_cost(args.big_exponent, out)
+    table_elastic_limits(exps, load, out)
+    table_full_contact(1024, out)
+    table_iterations(exps, out)
+    table_timing(big_exponent, out)
+    table_cost(big_exponent, out)
     return 0
-
-
-if __name__ == "__main__":  # pragma: no cover
-    raise SystemExit(main())

@@ -1,11 +1,14 @@
-"""Benchmarks that print figures (never asserted in tests).
+"""Benchmarks that print figures (never asserted in tests), run by `python -m comparisons bench`.
 
-`python -m comparisons bench` times a sweep of the semi-analytic solver through the command line
-(a fresh `python -m comparisons sweep` process, as a user runs it) and in process; `--bem` adds the
-BEM tables (elastic limits, Appendix B, iterations, speed and memory), `--bem-only` runs those
-alone; `--cluster` times one BEM sweep (default 2000 points at N = 4096) in this process, in two
-local processes and on a two-worker local Dask cluster, and checks that all three return the same
-records in the same order.  Every table says how loaded the machine was (load average).
+`bench` alone times a sweep of the semi-analytic solver through the command line (a fresh
+`python -m comparisons sweep` process, as a user runs it) and in process; `--bem` adds the BEM
+tables (`bem`: elastic limits, Appendix B, iterations, speed and memory; `trust`: the adaptive
+default's cost and the memory per panel), `--bem-only` runs those alone; `--cluster` times one
+BEM sweep (default 2000 points at N = 4096) in this process, in two local processes and on a
+two-worker local Dask cluster, and checks that all three return the same records in the same
+order.  `--honesty` (`trust`), `--materials` (`materials`) and `--accepted` (`accepted`) are
+the studies of the BEM's error estimates, of broad Prony spectra and of the semi-analytic road
+over its accepted inputs.  Every table says how loaded the machine was (load average).
 """
 from __future__ import annotations
 
@@ -70,7 +73,7 @@ def _load_average():
 
 def cluster_specs(points=2000, nodes=4096):
     """A BEM sweep of `points` points at a pinned mesh: 40 loads × speeds, log-spaced."""
-    from . import runner
+    from .. import runner
     nload = min(40, points)
     nspeed = max(1, points // nload)
     loads = np.logspace(-2, 0, nload)               # partial and full contact at ratio 3, hk 1
@@ -82,7 +85,7 @@ def cluster_specs(points=2000, nodes=4096):
 def cluster_sweep(points=2000, nodes=4096):
     """Print the wall time of one BEM sweep in 1 and 2 local processes and on a 2-worker local
     Dask cluster (one thread per worker); 0 when the three return identical records in order."""
-    from . import _cluster, runner
+    from .. import _cluster, runner
     specs = cluster_specs(points, nodes)
     print(f"# BEM sweep: {len(specs)} points (40 loads log-spaced 1e-2…1, speeds 1e-2…1e2), "
           f"N = {nodes} pinned, ratio 3, hk 1; {_load_average()} before", file=sys.stderr)
@@ -122,30 +125,35 @@ def cluster_sweep(points=2000, nodes=4096):
     return 0 if same else 1
 
 
-def main(args):
-    """`python -m comparisons bench`: the defaults of its options are applied here."""
-    if getattr(args, "cluster", False):
+def run(args):
+    """`python -m comparisons bench` (its parsed options): the defaults of its options are
+    applied here; returns the exit status."""
+    if args.cluster:
         return cluster_sweep(2000 if args.points is None else args.points)
-    if getattr(args, "materials", False):
-        from . import _bench_materials
-        return _bench_materials.materials(200 if args.points is None else args.points,
-                                          20261125 if args.seed is None else args.seed)
-    if getattr(args, "honesty", False):
-        from . import _bench_trust
-        seed = 20261123 if getattr(args, "seed", None) is None else args.seed
-        if getattr(args, "front_door", False):
-            return _bench_trust.front_door(50 if args.points is None else args.points, seed,
-                                           light=getattr(args, "light", False))
-        return _bench_trust.honesty(300 if args.points is None else args.points, seed,
-                                    light=getattr(args, "light", False))
+    if args.materials:
+        from . import materials
+        return materials.materials(200 if args.points is None else args.points,
+                                   20261125 if args.seed is None else args.seed)
+    if args.honesty:
+        from . import trust
+        seed = 20261123 if args.seed is None else args.seed
+        if args.front_door:
+            return trust.front_door(50 if args.points is None else args.points, seed,
+                                    light=args.light)
+        return trust.honesty(300 if args.points is None else args.points, seed,
+                             light=args.light)
+    if args.accepted:
+        from . import accepted
+        return accepted.measure(1000 if args.points is None else args.points,
+                                2024 if args.seed is None else args.seed, cheap=args.cheap)
     points = 1000 if args.points is None else args.points
     max_log2n = 20 if args.max_log2n is None else args.max_log2n
     rc = 0
-    if not getattr(args, "bem_only", False):
+    if not args.bem_only:
         rc |= analytic_sweep(points)
-    if getattr(args, "bem", False) or getattr(args, "bem_only", False):
-        from . import _bench_bem, _bench_trust
-        rc |= _bench_bem.main(["--big-exponent", str(max_log2n)])
-        rc |= _bench_trust.cost()
-        rc |= _bench_trust.memory(min(max_log2n, 20))
+    if args.bem or args.bem_only:
+        from . import bem, trust
+        rc |= bem.tables(max_log2n)
+        rc |= trust.cost()
+        rc |= trust.memory(min(max_log2n, 20))
     return rc

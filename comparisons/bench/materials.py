@@ -27,7 +27,7 @@ import time
 
 import numpy as np
 
-from ._bench_trust import QUANTITIES, _errors
+from .trust import QUANTITIES, _errors
 
 #: the sample's ranges (log-uniform unless said)
 TERMS = (8, 64)            # uniform integers
@@ -90,7 +90,7 @@ def _record(spec_kw):
     """One point through the front door: (record or None, error, seconds)."""
     import json
 
-    from . import runner
+    from .. import runner
     spec = runner.resolve("bem", **spec_kw)
     t0 = time.perf_counter()
     res = runner.run(spec, deep=True)

@@ -217,7 +217,7 @@ def front_door_point(point, rtol=None):
     JSON record printed, against the semi-analytic road (a plain dict)."""
     import json
 
-    from . import runner
+    from .. import gate, runner
     ref = analytic.solve(**point)
     row = {"point": point, "reference": bool(ref.success)}
     if not ref.success:
@@ -233,7 +233,7 @@ def front_door_point(point, rtol=None):
         old = abs(float(np.mean(f.pressure)) / rec["load"] - 1.0)  # the gate before the cells
         front.update(nodes=rec["nodes"], errors=_errors(rec, ref.scalars()),
                      estimate=rec.get("error_estimate"), uniform=bool(f.uniform),
-                     old_mean_error=old, old_gate_refuses=old > runner.CONTROL_MISMATCH)
+                     old_mean_error=old, old_gate_refuses=old > gate.CONTROL_MISMATCH)
     row["front"] = front
     return row
 
@@ -309,7 +309,7 @@ def front_door(points=50, seed=20261123, rtol=1e-6, workers=2, out=sys.stdout, l
 
 def cost(out=sys.stdout, repeats=3):
     """Adaptive default against a fixed N = 4096 on the report's operating points."""
-    from . import crosscheck
+    from .. import crosscheck
     pts = []
     for label, load, speed, ratio, hk in crosscheck.GRID:
         pts.append((label, dict(load=crosscheck._load(load, speed, ratio, hk), speed=speed,

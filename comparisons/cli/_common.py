@@ -1,0 +1,315 @@
+"""What the subcommands share: the parser class, the option types and actions, the exit
+statuses and errors, the option groups of point and sweep (and of the parallel subcommands) and
+the checks that turn their options into a validated spec before any work."""
+from __future__ import annotations
+
+import argparse
+import math
+import re
+
+from .. import runner
+from .._errors import BadInput, Failed
+from .._io import check_output_dir, check_output_file, stderr
+
+__all__ = ["EXIT_OK", "EXIT_FAILED", "EXIT_BAD_INPUT", "MAX_RANGE_COUNT", "BadInput", "Failed",
+           "Parser", "Once", "number", "integer", "log_range", "solver_options",
+           "parallel_options", "accepted_ranges", "check_output_file", "check_output_dir",
+           "check_workers", "resolve", "units_si", "material_options", "validate", "stderr"]
+
+EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
+#: one log range START:STOP:COUNT holds at most this many values
+MAX_RANGE_COUNT = 1_000_000
+
+
+class Parser(argparse.ArgumentParser):
+    #: a value that starts with '-' and a digit is a value (a negative number, 1e-3, or a log
+    #: range such as -1:10:5), never an option: the roads then say what is allowed
+    _VALUE = re.compile(r"^-(\d|\.\d)[\w.:+-]*$")
+
+    def __init__(self, *a, **k):
+        k.setdefault("allow_abbrev", False)  # --no must not silently mean --nodes
+        super().__init__(*a, **k)
+        self._negative_number_matcher = self._VALUE
+
+    def error(self, message):  # one line, no usage dump
+        raise BadInput(message, prog=self.prog)
+
+    def format_help(self):  # an epilog made when asked for (it may import the roads)
+        make = getattr(self, "epilog_maker", None)
+        if make is not None:
+            self.epilog = make()
+        return super().format_help()
+
+
+class Once(argparse.Action):
+    """Store an option's value, refusing the option given twice (never silently the last)."""
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        given = namespace.__dict__.setdefault("_given", set())
+        if self.dest in given:
+            parser.error(f"{option_string} given twice")
+        given.add(self.dest)
+        if self.nargs in ("+", "*"):  # a sweep token may be a list (a log range)
+            values = [v for token in values
+                      for v in (token if isinstance(token, list) else [token])]
+        setattr(namespace, self.dest, values)
+
+
+def number(text):
+    try:
+        return float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not a number") from None
+
+
+def integer(text):
+    try:
+        return int(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+
+
+def log_range(text):
+    """Values of one sweep token: a number, or START:STOP:COUNT (COUNT log-spaced values from
+    START to STOP, both included exactly).
+
+    Raises
+    ------
+    argparse.ArgumentTypeError
+    """
+    if ":" not in text:
+        return [number(text)]
+    parts = text.split(":")
+    bad = argparse.ArgumentTypeError
+    if len(parts) != 3:
+        raise bad(f"{text!r}: a log range is START:STOP:COUNT")
+    a, b = (number(p) for p in parts[:2])
+    try:
+        k = int(parts[2])
+    except ValueError:
+        raise bad(f"{text!r}: COUNT must be an integer") from None
+    if not (math.isfinite(a) and math.isfinite(b) and a > 0 and b > 0):
+        raise bad(f"{text!r}: START and STOP of a log range must be finite and > 0")
+    if not 1 <= k <= MAX_RANGE_COUNT or (k == 1 and a != b):
+        raise bad(f"{text!r}: COUNT must be in [2, {MAX_RANGE_COUNT}] "
+                  "(1 only when START = STOP)")
+    if k == 1:
+        return [a]
+    la, lb = math.log10(a), math.log10(b)
+    vals = [10.0 ** (la + (lb - la) * j / (k - 1)) for j in range(k)]
+    vals[0], vals[-1] = a, b  # the ends exactly as written
+    return vals
+
+
+# ------------------------------------------------------------------------------ option groups
+_SPEED_HELP = ("V τ_ref k ≥ 0, τ_ref the creep (retardation) time τ of the standard linear "
+               "solid (not its relaxation time τ E0/E∞), or the time unit of the --prony/"
+               "--material file (1 s for a DMA curve); every record states it (time_unit); "
+               "with --units SI, V [m/s]")
+_LOAD_HELP = ("p̃∞ = p∞(1 − ν²)/E_ref > 0, E_ref = E0 (or the --prony/--material file's "
+              "reference modulus); with --units SI, p∞ [Pa]")
+
+
+def solver_options(p, several):
+    """Options shared by point and sweep; `several`: sweep's lists and ranges of values."""
+    p.add_argument("--solver", choices=["analytic", "bem"], required=True, action=Once)
+    g = p.add_mutually_exclusive_group(required=True)
+    if several:
+        rng = " (values, or log ranges START:STOP:COUNT)"
+        g.add_argument("--load", type=log_range, nargs="+", action=Once, metavar="P",
+                       help=_LOAD_HELP + rng)
+        g.add_argument("--penetration", type=log_range, nargs="+", action=Once,
+                       metavar="D", help="Δ/h in (0, 1]" + rng)
+        p.add_argument("--speed", type=log_range, nargs="+", required=True,
+                       action=Once, metavar="S", help=_SPEED_HELP + rng)
+    else:
+        g.add_argument("--load", type=number, action=Once, metavar="P",
+                       help=_LOAD_HELP)
+        g.add_argument("--penetration", type=number, action=Once, metavar="D",
+                       help="Δ/h in (0, 1]; the load is then an output")
+        p.add_argument("--speed", type=number, required=True, action=Once,
+                       metavar="S", help=_SPEED_HELP)
+    p.add_argument("--ratio", type=number, action=Once, metavar="R",
+                   help="E∞/E0 (default 3); not with --prony or --material")
+    p.add_argument("--hk", type=number, action=Once, metavar="H",
+                   help="h k (default 1); not with --profile")
+    p.add_argument("--nodes", type=integer, action=Once, metavar="N",
+                   help="BEM: a fixed mesh of N panels per period (default: adaptive); analytic: "
+                        "points of --fields (default 1024), only with --fields")
+    p.add_argument("--rtol", type=number, action=Once, metavar="T",
+                   help="BEM without --nodes: refine until every estimated error is below T "
+                        f"(default {runner.DEFAULTS['rtol']:g})")
+    p.add_argument("--max-nodes", type=integer, action=Once, metavar="M",
+                   help="BEM without --nodes: the finest mesh the refinement may reach")
+    p.add_argument("--profile", action=Once, metavar="FILE",
+                   help="BEM only: periodic profile file (bem.read_profile); replaces the sinusoid")
+    p.add_argument("--prony", action=Once, metavar="FILE",
+                   help="BEM only: Prony-series creep function file (bem.read_prony: creep "
+                        "times, in tau_ref); replaces the standard linear solid")
+    p.add_argument("--material", action=Once, metavar="FILE",
+                   help="BEM only: a material file, told by its first line: a creep series "
+                        "('J0 <value>' then 'J_i tau_i', creep times), a relaxation series "
+                        "('E_r <value>' then 'E_i theta_i', relaxation times) or a DMA master "
+                        "curve (CSV header frequency, storage, loss; fitted with a Prony series, "
+                        "E_ref its relaxed modulus, tau_ref 1 s); docs/materials.md.  Not with "
+                        "--prony or --ratio")
+    p.add_argument("--max-residual", type=number, action=Once, metavar="B",
+                   help="DMA --material: the largest relative residual on E' or E'' the Prony "
+                        "fit may leave (default 0.05), else refused")
+    p.add_argument("--per-decade", type=number, action=Once, metavar="K",
+                   help="DMA --material: relaxation times per decade of the fit (default 2)")
+    p.add_argument("--temperature", type=number, action=Once, metavar="T",
+                   help="--material at temperature T: every time of the material multiplied by "
+                        "a_T(T) (the file holds it at the shift's reference temperature); with "
+                        "--wlf or --shift-table")
+    shift = p.add_mutually_exclusive_group()
+    shift.add_argument("--wlf", type=number, nargs=3, action=Once, metavar=("C1", "C2", "TREF"),
+                       help="WLF shift log10 a_T = -C1 (T - TREF)/(C2 + T - TREF)")
+    shift.add_argument("--shift-table", action=Once, metavar="FILE",
+                       help="shift table CSV (columns temperature, log_aT), linear in log10 a_T, "
+                            "no extrapolation")
+    p.add_argument("--units", choices=["conventions", "SI"], action=Once,
+                   help="SI: --load is p∞ [Pa] (--penetration Δ [m]), --speed V [m/s], with "
+                        "--nu, --wavelength, --amplitude and the material (--E0 --Einf with "
+                        "--tau-creep or --tau-relax, or --material: series files in Pa and s, a "
+                        "DMA curve in its header's unit); the record adds 'si' (default: the "
+                        "conventions' dimensionless groups)")
+    for names, unit, what in ((("--E0",), "Pa", "relaxed modulus of the standard linear solid"),
+                              (("--Einf",), "Pa", "instantaneous (glassy) modulus, > E0"),
+                              (("--tau-creep", "--tau"), "s", "creep (retardation) time τ of "
+                               "the solid, eq. (2.3); the speed group is V τ k"),
+                              (("--tau-relax",), "s", "relaxation time of the solid, τ E0/Einf "
+                               "(instead of --tau-creep)"),
+                              (("--nu",), "-", "Poisson's ratio"),
+                              (("--wavelength",), "m", "λ of the sinusoid"),
+                              (("--amplitude",), "m", "h of the sinusoid")):
+        p.add_argument(*names, type=number, action=Once, metavar="X",
+                       help=f"--units SI: {what} [{unit}]")
+
+
+def parallel_options(p, what):
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--workers", type=integer, action=Once, metavar="W",
+                   help=f"local processes ({what})")
+    g.add_argument("--scheduler", action=Once, metavar="ADDRESS",
+                   help="run on the Dask distributed cluster of this scheduler (e.g. "
+                        "tcp://host:8786; needs viscosine[cluster]); not with --workers")
+
+
+def _allowed(text):
+    """The range part of an ACCEPTED reason: up to its first ': ' outside brackets (an
+    interval such as (1, 10] closes with either)."""
+    depth = 0
+    for i, ch in enumerate(text):
+        depth += (ch in "([") - (ch in ")]")
+        if depth == 0 and text.startswith(": ", i):
+            return text[:i]
+    return text
+
+
+def accepted_ranges():
+    """The accepted range of every input of point and sweep, from analytic.ACCEPTED and
+    bem.ACCEPTED (for --help)."""
+    import textwrap
+
+    from .. import roads
+    tables = {"analytic": roads.accepted("analytic"), "bem": roads.accepted("bem")}
+    rows = [("--load", "load"), ("--penetration", "penetration"), ("--speed", "speed"),
+            ("--ratio", "ratio"), ("--hk", "hk"), ("--nodes", "nodes"), ("--rtol", "rtol"),
+            ("--max-nodes", "max_nodes"), ("--profile", "profile"), ("--prony", "material")]
+    lines = textwrap.wrap("accepted inputs (analytic.ACCEPTED and bem.ACCEPTED give the reason "
+                          "for each bound; outside them: exit status 2, nothing solved):", 96)
+    for option, key in rows:
+        for road, table in tables.items():
+            if key in table:
+                lines += textwrap.wrap(f"{road}: {_allowed(table[key][2])}", 96,
+                                       initial_indent=f"  {option:<15}" if road == "analytic"
+                                       or key not in tables["analytic"] else " " * 17,
+                                       subsequent_indent=" " * 21)
+    return "\n".join(lines)
+
+
+# ------------------------------------------------------------------------------ shared checks
+def check_workers(args):
+    if getattr(args, "workers", None) is not None and args.workers < 1:
+        raise BadInput(f"--workers {args.workers} is not allowed: an integer ≥ 1")
+
+
+def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=None):
+    """The spec of point's and sweep's options (`runner.resolve`: defaults, what applies)."""
+    try:
+        return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
+                              ratio=args.ratio, hk=args.hk, nodes=args.nodes, rtol=args.rtol,
+                              max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
+                              fields=args.fields is not None, files=files,
+                              material=args.material,
+                              material_options={**material_options(args),
+                                                "si": args.units == "SI" or None},
+                              si=si)
+    except runner.InputError as exc:
+        raise BadInput(str(exc)) from None
+
+
+def units_si(args, files):
+    """``--units SI``: the SI values in ``args`` become the dimensionless groups (in place);
+    returns the spec's ``si`` description, or None in the conventions' units."""
+    given = {k: getattr(args, k) for k in ("E0", "Einf", "tau_creep", "tau_relax", "nu",
+                                           "wavelength", "amplitude")}
+    if args.units != "SI":
+        extra = [k for k, v in given.items() if v is not None]
+        if extra:
+            raise BadInput(f"--{extra[0].replace('_', '-')} is not allowed without --units SI: "
+                           "an SI input (the conventions' groups need none)")
+        return None
+    for option in ("ratio", "hk", "profile", "prony"):
+        if getattr(args, option) is not None:
+            raise BadInput(f"--{option} is not allowed with --units SI: the SI problem is the "
+                           "sinusoid of --amplitude, --wavelength on --E0 --Einf --tau-creep or "
+                           "a --material file")
+    material = None
+    if args.material is not None:
+        if args.solver != "bem":
+            raise BadInput("--material is not allowed here: a BEM option (the semi-analytic road "
+                           "solves the sinusoid on the standard linear solid; use --solver bem)")
+        opts = {k: v for k, v in material_options(args).items() if v is not None}
+        try:
+            files["material"] = runner.read_material(args.material, **opts, si=True)
+        except runner.InputError as exc:
+            raise BadInput(f"{exc}") from None
+        material = files["material"][1]
+    several = isinstance(args.speed, list)
+
+    def listed(v):
+        return None if v is None else (v if several else [v])
+    try:
+        out = runner.resolve_si(args.solver, given, loads=listed(args.load),
+                                penetrations=listed(args.penetration), speeds=listed(args.speed),
+                                material=material)
+    except runner.InputError as exc:
+        raise BadInput(f"{exc}") from None
+    for key in ("load", "penetration", "speed"):
+        if out[key] is not None:
+            setattr(args, key, out[key] if several else out[key][0])
+    args.ratio, args.hk = out["ratio"], out["hk"]
+    return out["si"]
+
+
+def material_options(args):
+    return {"temperature": args.temperature, "wlf": args.wlf, "shift_table": args.shift_table,
+            "max_residual": args.max_residual, "per_decade": args.per_decade}
+
+
+def validate(spec):
+    try:
+        runner.validate(spec)
+    except runner.InputError as exc:
+        raise BadInput(_option_names(str(exc))) from None
+
+
+def _option_names(text):
+    """'max_nodes=…' in a road's message becomes '--max-nodes …' (the option the user typed)."""
+    m = re.match(r"(\w+)=(\S+) is not allowed", text)
+    if m and m.group(1) in ("load", "penetration", "speed", "ratio", "hk", "nodes", "rtol",
+                            "max_nodes"):
+        return f"--{m.group(1).replace('_', '-')} {m.group(2)}{text[m.end(2):]}"
+    return text

@@ -1,0 +1,67 @@
+"""``bench``: benchmarks that print figures (`comparisons.bench`)."""
+from __future__ import annotations
+
+from ._common import BadInput, Once, integer
+
+
+def add_parser(sub):
+    p = sub.add_parser("bench", help="benchmarks that print figures (speed, iterations, memory)")
+    p.add_argument("--points", type=integer, action=Once, metavar="N",
+                   help="points of the swept benchmark (default 1000; 2000 with --cluster)")
+    g = p.add_mutually_exclusive_group()
+    g.add_argument("--bem", action="store_true", help="also run the BEM benchmark tables")
+    g.add_argument("--bem-only", action="store_true", help="only the BEM benchmark tables")
+    g.add_argument("--cluster", action="store_true",
+                   help="a BEM sweep at N = 4096 in 1 and 2 local processes and on a 2-worker "
+                        "local Dask cluster")
+    g.add_argument("--honesty", action="store_true",
+                   help="the BEM's error estimates and adaptive mesh against the semi-analytic "
+                        "road on a random sample of the accepted inputs (default 300 points)")
+    g.add_argument("--materials", action="store_true",
+                   help="broad Prony spectra (8-64 terms, 2-20 decades, E∞/E0 up to 1e4) "
+                        "through `point --solver bem --prony`, against the Fourier reference "
+                        "(analytic.fourier_solve), with the standard linear solid's cost "
+                        "(default 200 points)")
+    g.add_argument("--accepted", action="store_true",
+                   help="the semi-analytic road over a random sample of analytic.ACCEPTED: "
+                        "valid answers, the worst consistency residuals, every failure "
+                        "(default 1000 points)")
+    p.add_argument("--seed", type=integer, action=Once, metavar="S",
+                   help="seed of the --honesty, --materials or --accepted sample (default "
+                        "20261123, 20261125, 2024)")
+    p.add_argument("--light", action="store_true",
+                   help="with --honesty: light loads, p~/hk log-uniform in 1e-8 … 1e-4")
+    p.add_argument("--front-door", action="store_true",
+                   help="with --honesty: each point through `point --solver bem` (the runner "
+                        "and its last line of defence), judging the printed record "
+                        "(default 50 points)")
+    p.add_argument("--cheap", action="store_true",
+                   help="with --accepted: skip Solution.check(), only the constraints every "
+                        "answer meets")
+    p.add_argument("--max-log2n", type=integer, action=Once, metavar="K",
+                   help="largest BEM mesh 2^K of the BEM speed/memory table (default 20)")
+    p.set_defaults(run=run)
+
+
+def run(args):
+    if args.points is not None and args.points < 1:
+        raise BadInput(f"--points {args.points} is not allowed: an integer ≥ 1")
+    if args.max_log2n is not None and not 3 <= args.max_log2n <= 24:
+        raise BadInput(f"--max-log2n {args.max_log2n} is not allowed: an integer in [3, 24]")
+    if args.cluster and args.max_log2n is not None:
+        raise BadInput("--max-log2n is not allowed with --cluster: it sets the BEM tables")
+    if args.seed is not None and not (args.honesty or args.materials or args.accepted):
+        raise BadInput("--seed is not allowed without --honesty, --materials or --accepted: it "
+                       "seeds their sample")
+    if args.light and not args.honesty:
+        raise BadInput("--light is not allowed without --honesty: it chooses that sample")
+    if args.front_door and not args.honesty:
+        raise BadInput("--front-door is not allowed without --honesty: it is a mode of that "
+                       "study")
+    if args.cheap and not args.accepted:
+        raise BadInput("--cheap is not allowed without --accepted: it is a mode of that study")
+    for study in ("honesty", "accepted"):
+        if getattr(args, study) and args.max_log2n is not None:
+            raise BadInput(f"--max-log2n is not allowed with --{study}: it sets the BEM tables")
+    from .. import bench
+    return bench.run(args)

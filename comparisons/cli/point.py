@@ -1,0 +1,30 @@
+"""``point``: solve one operating point, print one JSON object."""
+from __future__ import annotations
+
+import argparse
+
+from .. import points
+from ._common import (EXIT_FAILED, EXIT_OK, Once, accepted_ranges, check_output_file, resolve,
+                      solver_options, units_si, validate)
+
+
+def add_parser(sub):
+    p = sub.add_parser("point", help="solve one operating point, print one JSON object",
+                       description="Solve one operating point and print one JSON object.",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.epilog_maker = accepted_ranges
+    solver_options(p, several=False)
+    p.add_argument("--fields", action=Once, metavar="FILE.csv",
+                   help="also write σ, v and the gap over one period to this CSV file")
+    p.set_defaults(run=run)
+
+
+def run(args):
+    if args.fields is not None:
+        check_output_file("--fields", args.fields)
+    files = {}
+    si = units_si(args, files)
+    spec = resolve(args, load=args.load, penetration=args.penetration, speed=args.speed,
+                   files=files, si=si)
+    validate(spec)
+    return EXIT_OK if points.point(spec, fields=args.fields) else EXIT_FAILED

@@ -1,0 +1,251 @@
+"""The adapter to the two roads: the one module of the comparison layer that calls them.
+
+The roads are :mod:`bem` (the boundary-element method) and :mod:`analytic` (the semi-analytic
+solution of the paper and, in `analytic.fourier_solve`, an independent dense Fourier
+collocation).  Every other module of `comparisons` reaches them through the functions here, so
+that the call shape of each road (its keywords, tolerances and input objects) lives in one place:
+
+- the front door (`comparisons.runner`): `validate_analytic`, `validate_bem` (each road's own
+  accepted ranges), `accepted` and `si_groups` (SI inputs checked by the road), and the record
+  adapters `analytic_record` and `bem_record` (road → JSON record, fields and the constraint
+  figures the last line of defence, `comparisons.gate`, checks: a `Solved`).  They pass the
+  user's values as given, so that the road's own refusal names them as typed;
+- operating points as plain dicts of numbers (the suite, verify, the report, the cross-check,
+  the peers): `analytic_solution`, `fourier_solution`, `bem_solution` (values as floats),
+  `transition_load`, `threshold_speed`;
+- the BEM's inputs: `read_profile`, `read_prony` (the BEM's readers: the one definition of each
+  file format), `sinusoid`, `standard_linear_solid`, `prony`;
+- `source_hash`: the two roads' source, on which a certified result depends.
+
+Each road is imported inside the functions that use it: importing this module loads neither (the
+records of the analytic road never load the BEM; `comparisons._materials` and
+`comparisons.mastercurve` load no road at import).  The calls look ``bem.solve`` and
+``analytic.solve`` up on their modules when made, so that a test replacing them is seen.
+
+The benchmarks (the package `comparisons.bench`) time the roads' own calls and call them
+directly.
+"""
+from __future__ import annotations
+
+import hashlib
+from pathlib import Path
+from typing import NamedTuple
+
+import numpy as np
+
+from viscosine import Fields
+
+#: Krylov tolerance of the suite's BEM solves (relative to h k): below the discretisation error
+#: at the finest mesh, so that the convergence study sees the mesh and not the linear solver
+#: (the default 1e-10 leaves Δ/h changes of ~1e-11 at N = 2^18)
+BEM_TOL = 1e-12
+
+
+def _road(solver):
+    import importlib
+    return importlib.import_module(solver)
+
+
+# ------------------------------------------------------------------------------ the front door
+class Solved(NamedTuple):
+    """What an adapter returns: the road's JSON record, its fields, its constraint figures."""
+
+    record: dict
+    fields: Fields | None
+    constraints: dict | None  # min_pressure (over a pressure scale), min_gap (over h), mean_pressure_error
+
+
+def _controls(spec):
+    """The control of a spec, its value as given (unlike `point_controls`: no conversion)."""
+    if spec.get("load") is not None:
+        return {"load": spec["load"]}
+    return {"penetration": spec.get("penetration")}
+
+
+def _bem_kwargs(spec, problem):
+    """bem.solve's keywords for a spec and its parsed ``problem`` ``(profile, material)``:
+    None for the sinusoid of the spec's ``hk`` and the standard linear solid of its ``ratio``."""
+    profile, material = problem
+    kw = dict(_controls(spec), speed=spec["speed"])
+    if profile is not None:
+        kw["profile"] = profile
+    else:
+        kw["hk"] = spec["hk"]
+    if material is not None:
+        kw["material"] = material
+    else:
+        kw["ratio"] = spec["ratio"]
+    for name in ("nodes", "rtol", "max_nodes"):
+        if spec.get(name) is not None:
+            kw[name] = spec[name]
+    return kw
+
+
+def validate_analytic(spec):
+    """``analytic.validate`` on a spec (ValueError naming the first input it refuses)."""
+    import analytic
+    analytic.validate(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"])
+
+
+def validate_bem(spec, problem):
+    """``bem.validate`` on a spec and its ``problem`` (see `bem_record`)."""
+    import bem
+    bem.validate(**_bem_kwargs(spec, problem))
+
+
+def accepted(solver):
+    """The road's table of accepted inputs, name → (low, high, what is allowed and why)."""
+    return _road(solver).ACCEPTED
+
+
+def si_groups(solver, scales):
+    """The dimensionless groups of the SI problem ``scales`` (`viscosine._si.groups`), each
+    checked by the road's own ``validate`` (ValueError naming the SI input)."""
+    from viscosine import _si
+    return _si.groups(scales, _road(solver).validate, accepted(solver),
+                      with_hk=("load",) if solver == "bem" else ())
+
+
+def analytic_record(spec, points, deep):
+    """Adapter of the semi-analytic road (``analytic.solve`` → record, fields, constraints).
+
+    ``points``: the fields on that many points of a uniform grid, or None (no fields);
+    ``deep``: the constraint figures from the graded quadrature of the fields (a few ms).
+    """
+    import analytic
+    sol = analytic.solve(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"])
+    rec = sol.as_dict()
+    if not sol.success:
+        return Solved(rec, None, None)
+    f = None
+    if points is not None:
+        f = sol.fields(np.arange(points) / points - 0.5)
+    c = None
+    if deep:  # graded quadrature of the fields: exact constraints, a few ms
+        chk = sol.check()
+        c = {"min_pressure": chk.get("min_pressure", chk.get("min_pressure_over_load")),
+             "min_gap": chk["min_gap"], "mean_pressure_error": chk["mean_pressure_error"]}
+    return Solved(rec, f, c)
+
+
+def bem_record(spec, problem, want_fields):
+    """Adapter of the BEM road (``bem.solve`` → record, fields, constraints).
+
+    ``problem``: ``(profile, material)``, the parsed profile and creep series of the spec, None
+    for the sinusoid of its ``hk`` and the standard linear solid of its ``ratio``.  The
+    constraint figures come with every converged result (the panel values are at hand).
+    """
+    import bem
+    res = bem.solve(**_bem_kwargs(spec, problem))
+    rec = res.as_dict()
+    rec.setdefault("iterations", int(res.nit))
+    rec["profile_file"] = spec.get("profile")
+    rec["prony_file"] = spec.get("prony")
+    if not res.success:
+        return Solved(rec, None, None)
+    f = res.fields()
+    # the panel values are at hand: the constraints cost nothing on this road.  The mean σ is
+    # the fields' own quadrature: after a contact window the grid is not uniform (fine window
+    # panels, coarse periodic ones), and each panel weighs its width
+    smax = float(np.max(f.pressure)) if f.pressure.size else 0.0
+    load = rec.get("load") or float(res.load)
+    c = {"min_pressure": float(np.min(f.pressure)) / smax if smax > 0 else 0.0,
+         "min_gap": float(np.min(f.gap)),
+         "mean_pressure_error": abs(f.mean("pressure") / load - 1.0)}
+    return Solved(rec, f if want_fields else None, c)
+
+
+# ------------------------------------------------------------------------------ operating points
+def point_controls(point):
+    """``{"load": p̃∞}`` or ``{"penetration": Δ/h}`` of an operating point dict, as a float."""
+    if point.get("load") is not None:
+        return {"load": float(point["load"])}
+    return {"penetration": float(point["penetration"])}
+
+
+def analytic_solution(point):
+    """The semi-analytic solution (``analytic.solve``) at an operating point dict: ``load`` or
+    ``penetration``, ``speed``, ``ratio`` (default 3), ``hk`` (default 1)."""
+    import analytic
+    return analytic.solve(**point_controls(point), speed=float(point["speed"]),
+                          ratio=float(point.get("ratio", 3.0)), hk=float(point.get("hk", 1.0)))
+
+
+def fourier_solution(point, material):
+    """The Fourier reference at an operating point on the sinusoid (load or penetration control)
+    for the creep series ``material`` (a :class:`bem.Prony`, the BEM's own input, so that both
+    roads solve the same material).
+
+    ``require_resolved=False``: broad spectra have memory layers far below any grid, which the
+    reference's estimates and refusals judge, not a blanket refusal.
+    """
+    import analytic
+    return analytic.fourier_solve(**point_controls(point), speed=float(point["speed"]),
+                                  creep=(float(material.J0), tuple(float(j) for j in material.J),
+                                         tuple(float(t) for t in material.tau)),
+                                  hk=float(point.get("hk", 1.0)), require_resolved=False)
+
+
+def bem_solution(point, nodes, problem):
+    """The BEM solution at an operating point dict on ``nodes`` panels (Krylov tolerance
+    `BEM_TOL`); ``problem`` is ``(profile, material)``, the BEM's objects."""
+    import bem
+    profile, material = problem
+    return bem.solve(profile=profile, material=material, speed=float(point["speed"]),
+                     nodes=int(nodes), tol=BEM_TOL, **point_controls(point))
+
+
+def transition_load(speed, ratio, hk):
+    """p̃FC(V), the smallest load of full contact (``analytic.transition_load``)."""
+    import analytic
+    return analytic.transition_load(speed, ratio, hk)
+
+
+def threshold_speed(load, ratio, hk):
+    """The speed at which ``load`` reaches full contact (``analytic.threshold_speed``)."""
+    import analytic
+    return analytic.threshold_speed(load, ratio, hk)
+
+
+# ------------------------------------------------------------------------------ the BEM's inputs
+def read_profile(path):
+    """A periodic profile file, read by the BEM's own reader (``bem.read_profile``)."""
+    import bem
+    return bem.read_profile(path)
+
+
+def read_prony(path):
+    """A Prony-series creep function file, read by the BEM's own reader (``bem.read_prony``)."""
+    import bem
+    return bem.read_prony(path)
+
+
+def sinusoid(hk):
+    """The sinusoidal indenter of amplitude times wavenumber ``hk`` (``bem.Sinusoid``)."""
+    import bem
+    return bem.Sinusoid(hk)
+
+
+def standard_linear_solid(ratio):
+    """The standard linear solid E∞/E0 = ``ratio`` as the BEM's creep series."""
+    import bem
+    return bem.Prony.standard_linear_solid(ratio)
+
+
+def prony(J0, J, tau):
+    """A creep series J(t) = J0 − Σ J_i exp(−t/τ_i) as the BEM's material (``bem.Prony``)."""
+    import bem
+    return bem.Prony(J0, J, tau)
+
+
+# ------------------------------------------------------------------------------ their source
+def source_hash() -> str:
+    """Hash of the two roads' source files: a resumed check never reuses another code's results."""
+    import analytic
+    import bem
+    h = hashlib.sha256()
+    for pkg in (analytic, bem):
+        for f in sorted(Path(pkg.__file__).parent.glob("*.py")):
+            h.update(f.name.encode())
+            h.update(f.read_bytes())
+    return h.hexdigest()
