@@ -1,4 +1,4 @@
-"""The two errors a command reports in one line on standard error, never as a traceback.
+"""The errors a command reports in one line on standard error, never as a traceback.
 
 Raised by the command line (`comparisons.cli`) and by the library functions it calls (a sweep,
 `verify`, `mastercurve`, the output checks of `_io`), which therefore never import the command
@@ -20,3 +20,8 @@ class BadInput(Exception):
 
 class Failed(BadInput):
     """The command could not do its work: one line on standard error, exit status 1."""
+
+
+class InputError(ValueError):
+    """Input outside what is supported, raised by the library (`runner`, the readers of `_io`):
+    the command line reports it in one line on standard error, exit status 2."""

@@ -1,6 +1,6 @@
 """Files written so that an interrupted run never leaves half of one: the one atomic writer of
 text (UTF-8, '\\n' line ends, whatever the locale); the checks, before any work, that an output
-file or folder can be written; one line on standard error."""
+file or folder can be written; the reader of input files' bytes; one line on standard error."""
 from __future__ import annotations
 
 import os
@@ -9,7 +9,7 @@ import stat
 import sys
 from pathlib import Path
 
-from ._errors import BadInput
+from ._errors import BadInput, InputError
 
 
 def temporary_name(path) -> str:
@@ -54,7 +54,6 @@ def check_output_file(option, path) -> None:
     if os.path.lexists(path):
         st = os.stat(path) if os.path.exists(path) else os.lstat(path)
         if not stat.S_ISREG(st.st_mode):
-            from .runner import _kind
             raise BadInput(f"{option} {path}: {_kind(st.st_mode)}, not a regular file")
     if not os.access(folder, os.W_OK | os.X_OK):
         raise BadInput(f"{option} {path}: the folder {folder} is not writable")
@@ -86,3 +85,46 @@ def check_output_dir(option, path, create) -> None:
                 raise BadInput(f"{option} {path}: cannot create the folder ({exc.strerror})") from None
     if os.path.isdir(path) and not os.access(path, os.W_OK | os.X_OK):
         raise BadInput(f"{option} {path}: the folder is not writable")
+
+
+def file_bytes(option, path):
+    """The bytes of an input file, which must be a regular UTF-8 text file.
+
+    Raises
+    ------
+    InputError
+        One line ``<option> <path>: ...`` (a missing, special, binary or non-UTF-8 file).
+    """
+    where = f"{option} {path}"
+    if path == "":
+        raise InputError(f"{option} '' is not allowed: the name of a file")
+    try:
+        st = os.stat(path)
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
+    if not stat.S_ISREG(st.st_mode):
+        raise InputError(f"{where}: not a regular file ({_kind(st.st_mode)})")
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
+    if b"\0" in data:
+        raise InputError(f"{where}: a binary file (NUL bytes); expected UTF-8 text")
+    try:
+        data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{where}: not UTF-8 text (byte {exc.start}); expected UTF-8 text") from None
+    return data
+
+
+def _kind(mode):
+    if stat.S_ISDIR(mode):
+        return "a folder"
+    if stat.S_ISFIFO(mode):
+        return "a FIFO"
+    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
+        return "a device"
+    if stat.S_ISSOCK(mode):
+        return "a socket"
+    return "not a regular file"

@@ -41,6 +41,7 @@ import os
 from typing import NamedTuple
 
 from . import roads
+from ._io import file_bytes
 
 TIME_UNIT_SLS = ("speed = V tau_ref k with tau_ref = tau, the creep (retardation) time of the "
                  "standard linear solid (eq. 2.3); its relaxation time is tau E0/Einf = "
@@ -81,7 +82,6 @@ def shift_from_options(wlf=None, shift_table=None):
             raise ValueError(f"--wlf {c1!r} {c2!r} {t_ref!r} is not allowed: {_why(exc)}") from None
         return s, {"kind": "WLF", "C1": s.C1, "C2": s.C2, "T_ref": s.T_ref}
     if shift_table is not None:
-        from .runner import file_bytes
         data = file_bytes("--shift-table", shift_table)
         try:
             s = vm.read_shift_table(shift_table)
@@ -122,7 +122,6 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     """
     from viscosine import materials as vm
 
-    from .runner import file_bytes
     data = file_bytes(option, path)
     where = f"{option} {path}"
     if (wlf is None and shift_table is None) != (temperature is None):

@@ -30,8 +30,6 @@ import hashlib
 import math
 import os
 import re
-import secrets
-import stat
 import time
 import warnings as _warnings
 
@@ -43,6 +41,8 @@ from viscosine import Fields, ViscosineWarning
 from . import roads
 from .gate import check_record
 from .gate import one_line as _one_line  # also the command line's one-line refusals
+from ._errors import InputError
+from ._io import file_bytes, temporary_name
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
 #: viscosine.DEFAULT_RTOL, the one value both read)
@@ -52,10 +52,6 @@ FIELD_POINTS = (8, 2 ** 20)
 
 SPEC_KEYS = ("solver", "load", "penetration", "speed", "ratio", "hk", "nodes", "rtol", "max_nodes",
              "profile", "prony", "field_points")
-
-
-class InputError(ValueError):
-    """Input outside what is supported (command line: one line on standard error, exit 2)."""
 
 
 # ------------------------------------------------------------------------------ specs
@@ -337,49 +333,6 @@ def read_input(option, path):
     return info, obj
 
 
-def file_bytes(option, path):
-    """The bytes of an input file, which must be a regular UTF-8 text file.
-
-    Raises
-    ------
-    InputError
-        One line ``<option> <path>: ...`` (a missing, special, binary or non-UTF-8 file).
-    """
-    where = f"{option} {path}"
-    if path == "":
-        raise InputError(f"{option} '' is not allowed: the name of a file")
-    try:
-        st = os.stat(path)
-    except OSError as exc:
-        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
-    if not stat.S_ISREG(st.st_mode):
-        raise InputError(f"{where}: not a regular file ({_kind(st.st_mode)})")
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read()
-    except OSError as exc:
-        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
-    if b"\0" in data:
-        raise InputError(f"{where}: a binary file (NUL bytes); expected UTF-8 text")
-    try:
-        data.decode("utf-8")
-    except UnicodeDecodeError as exc:
-        raise InputError(f"{where}: not UTF-8 text (byte {exc.start}); expected UTF-8 text") from None
-    return data
-
-
-def _kind(mode):
-    if stat.S_ISDIR(mode):
-        return "a folder"
-    if stat.S_ISFIFO(mode):
-        return "a FIFO"
-    if stat.S_ISCHR(mode) or stat.S_ISBLK(mode):
-        return "a device"
-    if stat.S_ISSOCK(mode):
-        return "a socket"
-    return "not a regular file"
-
-
 # ------------------------------------------------------------------------------ validation
 def validate(spec):
     """Check a spec before any work; raise InputError naming the input and what is allowed.
@@ -616,8 +569,7 @@ def write_fields_csv(path, fields, header=()):
             raise ValueError("the first cell is not centred on its point: its edges cannot be "
                              "written as widths")
     arrays = [np.asarray(data[c], dtype=float) for c in cols]
-    folder, base = os.path.split(os.path.abspath(path))
-    tmp = os.path.join(folder, f".{base}.{os.getpid()}.{secrets.token_hex(4)}.part")
+    tmp = temporary_name(os.path.abspath(path))
     try:
         with open(tmp, "w", encoding="ascii", newline="\n") as fh:
             for line in header:
