@@ -205,12 +205,13 @@ def test_a_prony_window_agrees_with_the_periodic_grids(monkeypatch):
 
 def test_a_memory_far_below_every_panel_is_in_the_estimate_not_a_refusal():
     """V/V0 = 1e-30: the memory length (1.6e-31 λ) is below a panel of any grid; its edge shift,
-    π L (1 − 1/ρ) ≈ 3.3e-31, is corrected by the edge fits' memory lag, the tenth of it that the
-    correction may leave is carried by the estimate, and it does not keep the window from being
-    tried.  The window's ka is Westergaard's with the relaxed modulus within its estimate; the
+    π L (1 − 1/ρ) ≈ 3.3e-31, is corrected by the edge fits' memory lag, the share of it that the
+    correction may leave (a tenth on 4096 panels, falling like 1/sqrt(N): 0.035 on the 32768 of
+    the estimate's coarsest grid) is carried by the estimate, and it does not keep the window
+    from being tried.  The window's ka is Westergaard's with the relaxed modulus within its estimate; the
     point is still refused, by μ ~ 1e-30 whose relative error no grid here brings to 1e-6."""
     ref = analytic.solve(load=1e-7, speed=1e-30)
     r = bem.solve(load=1e-7, speed=1e-30, max_nodes=2 ** 17)
     assert r.diagnostics["window"]["outcome"] == "estimate above rtol"
-    assert "edge shift, up to 3.3e-32" in r.diagnostics["estimate_note"]
+    assert "N=32768: its edge shift, up to 1.2e-32" in r.diagnostics["estimate_note"]
     assert not r.success and r.status == 5 and "mu=" in r.message
