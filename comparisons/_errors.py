@@ -25,3 +25,10 @@ class Failed(BadInput):
 class InputError(ValueError):
     """Input outside what is supported, raised by the library (`runner`, the readers of `_io`):
     the command line reports it in one line on standard error, exit status 2."""
+
+
+def one_line(exc):
+    """The first line of an exception's text (its type's name when it has none): what a
+    command prints of it on standard error."""
+    text = str(exc).strip().splitlines()
+    return text[0] if text else type(exc).__name__

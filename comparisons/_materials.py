@@ -41,6 +41,7 @@ import os
 from typing import NamedTuple
 
 from . import roads
+from ._errors import one_line
 from ._io import file_bytes
 
 TIME_UNIT_SLS = ("speed = V tau_ref k with tau_ref = tau, the creep (retardation) time of the "
@@ -79,22 +80,17 @@ def shift_from_options(wlf=None, shift_table=None):
         try:
             s = vm.WLF(c1, c2, t_ref)
         except ValueError as exc:
-            raise ValueError(f"--wlf {c1!r} {c2!r} {t_ref!r} is not allowed: {_why(exc)}") from None
+            raise ValueError(f"--wlf {c1!r} {c2!r} {t_ref!r} is not allowed: {one_line(exc)}") from None
         return s, {"kind": "WLF", "C1": s.C1, "C2": s.C2, "T_ref": s.T_ref}
     if shift_table is not None:
         data = file_bytes("--shift-table", shift_table)
         try:
             s = vm.read_shift_table(shift_table)
         except ValueError as exc:
-            raise ValueError(f"--shift-table {shift_table}: {_why(exc)}") from None
+            raise ValueError(f"--shift-table {shift_table}: {one_line(exc)}") from None
         return s, {"kind": "table", "path": os.path.abspath(shift_table),
                    "sha256": _sha256(data), "T": [s.T[0], s.T[-1]]}
     return None, None
-
-
-def _why(exc) -> str:
-    text = str(exc).strip().splitlines()
-    return text[0] if text else type(exc).__name__
 
 
 def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
@@ -133,7 +129,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     try:
         form = vm.material_form(path)
     except ValueError as exc:
-        raise ValueError(f"{where}: {_why(exc)}") from None
+        raise ValueError(f"{where}: {one_line(exc)}") from None
     if form != "dma" and (max_residual is not None or per_decade is not None):
         given = "--max-residual" if max_residual is not None else "--per-decade"
         raise ValueError(f"{given} is not allowed here: it sets the Prony fit of a DMA master "
@@ -161,7 +157,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
             prony = roads.prony(*model.creep(E_ref=e_ref, tau_ref=1.0))
             fit_info = _fit_info(model)
     except ValueError as exc:
-        raise ValueError(f"{where}: {_why(exc)}") from None
+        raise ValueError(f"{where}: {one_line(exc)}") from None
     info = {"form": form, "path": os.path.abspath(path), "sha256": _sha256(data),
             "terms": terms, **references(form, si, e_ref, fit_info),
             "temperature": None, "shift": None, "log10_aT": None,
@@ -199,7 +195,7 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
     try:
         log_a = float(shift.log10_aT(temperature)) + 0.0  # -0.0 at T_ref reads 0.0
     except ValueError as exc:
-        raise ValueError(f"--temperature {temperature!r} is not allowed: {_why(exc)} "
+        raise ValueError(f"--temperature {temperature!r} is not allowed: {one_line(exc)} "
                          f"({option})") from None
     a = 10.0 ** log_a
     model = m.model
@@ -243,7 +239,7 @@ def _fit(vm, curve, bound, per_decade):
     try:
         return vm.fit_prony(curve, **given)
     except ValueError as exc:
-        text = _why(exc)
+        text = one_line(exc)
         if text.startswith("max_residual="):  # the option the user typed
             text = "--max-residual " + text[len("max_residual="):]
         elif text.startswith("per_decade="):

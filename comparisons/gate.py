@@ -15,16 +15,12 @@ import numpy as np
 
 from viscosine._protocol import SCALAR_KEYS
 
+from ._errors import one_line
+
 #: round-off allowances of the physical checks
 RANGE_ROUNDOFF = 1e-12     # Δ/h ≤ 1, ka ≤ π, contact fraction ≤ 1, μ ≥ 0, τf ≥ 0
 CONSTRAINT_ROUNDOFF = 1e-8  # σ ≥ 0 (over max σ), gap ≥ 0 (over h): the solvers' own tolerances
 CONTROL_MISMATCH = 1e-6    # achieved load (or Δ/h) against the one asked for, and mean σ = load
-
-
-def one_line(exc):
-    """The first line of an exception's text (its type's name when it has none)."""
-    text = str(exc).strip().splitlines()
-    return text[0] if text else type(exc).__name__
 
 
 def _nonfinite(v, path=""):

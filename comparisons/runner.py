@@ -40,8 +40,8 @@ from viscosine import Fields, ViscosineWarning
 
 from . import roads
 from .gate import check_record
-from .gate import one_line as _one_line  # also the command line's one-line refusals
 from ._errors import InputError
+from ._errors import one_line as _one_line
 from ._io import file_bytes, temporary_name
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,

@@ -26,6 +26,7 @@ from viscosine._fields import WIDTH  # the cells of a non-uniform grid (optional
 
 from . import gate, runner
 from ._io import temporary_name
+from ._errors import one_line
 
 FIELD_NAMES = ("x_over_lambda", "pressure", "displacement", "gap")
 
@@ -71,7 +72,7 @@ class Store:
                 doc = json.load(fh)
         except (OSError, UnicodeDecodeError, ValueError) as exc:
             raise StoreError(f"{os.path.basename(path)} is unreadable ({type(exc).__name__}: "
-                             f"{gate.one_line(exc)})") from None
+                             f"{one_line(exc)})") from None
         why = _check_doc(doc, spec)
         if why:
             raise StoreError(f"{os.path.basename(path)}: {why}")
@@ -82,7 +83,7 @@ class Store:
                     doc["fields"] = {n: np.array(z[n]) for n in z.files}
             except Exception as exc:  # any unreadable archive (truncated zip, garbage, missing)
                 raise StoreError(f"{os.path.basename(npz)} is unreadable ({type(exc).__name__}: "
-                                 f"{gate.one_line(exc)})") from None
+                                 f"{one_line(exc)})") from None
             why = _check_fields(doc["fields"])
             if why:
                 raise StoreError(f"{os.path.basename(npz)}: {why}")

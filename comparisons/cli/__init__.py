@@ -39,7 +39,7 @@ import os
 import re
 import sys
 
-from .. import runner
+from .._errors import one_line
 from . import bench, crosscheck, mastercurve, point, report, suite, sweep, verify
 from ._common import (EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, BadInput, Failed, Parser, log_range,
                       stderr)
@@ -57,7 +57,7 @@ def _add(sub, module):
     try:
         module.add_parser(sub)
     except Exception as exc:
-        why = f"{type(exc).__name__}: {runner._one_line(exc)}"
+        why = f"{type(exc).__name__}: {one_line(exc)}"
         name = module.__name__.rpartition(".")[2]
 
         def unavailable(args):
@@ -93,7 +93,7 @@ def main(argv=None):
         return args.run(args)
     except BadInput as exc:  # Failed too
         prog = exc.prog or " ".join([parser.prog] + ([args.command] if args else []))
-        stderr(f"{prog}: {runner._one_line(exc)}")
+        stderr(f"{prog}: {one_line(exc)}")
         return EXIT_FAILED if isinstance(exc, Failed) else EXIT_BAD_INPUT
     except SystemExit as exc:  # --help, --version
         return exc.code if isinstance(exc.code, int) else EXIT_OK
@@ -109,6 +109,6 @@ def main(argv=None):
     except Exception as exc:  # a bug: still one line, and the status says it failed
         if os.environ.get("VISCOSINE_DEBUG"):
             raise
-        stderr(f"{parser.prog}: internal error: {type(exc).__name__}: {runner._one_line(exc)} "
+        stderr(f"{parser.prog}: internal error: {type(exc).__name__}: {one_line(exc)} "
                "(set VISCOSINE_DEBUG=1 for the traceback)")
         return EXIT_FAILED
