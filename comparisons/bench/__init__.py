@@ -133,7 +133,8 @@ def run(args):
     if args.materials:
         from . import materials
         return materials.materials(200 if args.points is None else args.points,
-                                   20261125 if args.seed is None else args.seed)
+                                   20261125 if args.seed is None else args.seed,
+                                   workers=1 if args.workers is None else args.workers)
     if args.honesty:
         from . import trust
         seed = 20261123 if args.seed is None else args.seed

@@ -1,6 +1,6 @@
 """Broad relaxation spectra through the front door, against the independent Fourier reference.
 
-``python -m comparisons bench --materials [--points N] [--seed S]``: a seeded random sample of
+``python -m comparisons bench --materials [--points N] [--seed S] [--workers W]``: a seeded random sample of
 Prony materials of the kind rubbers have (8 … 64 terms, retardation times over 2 … 20 decades,
 E∞/E0 up to 1e4; four spectrum shapes: log-normal, flat box, power law, two peaks), each at a
 random speed V/V0 = 1e-8 … 1e8 and load p̃ = 1e-3 … 3 (hk = 1, log-uniform).  Each point goes the
@@ -18,6 +18,7 @@ answered point with a reference is within 3 × its estimate and at least 95 % wi
 """
 from __future__ import annotations
 
+import contextlib
 import math
 import os
 import statistics
@@ -141,13 +142,19 @@ def materials(points=200, seed=20261125, workers=1, out=sys.stdout):
     print("point shape terms decades ratio speed load | answered N seconds SLS-seconds | "
           "true/estimate of mu, Δ/h, ka, ke [the BEM's estimate; the reference's]",
           file=out, flush=True)
+    with contextlib.ExitStack() as stack:
+        if workers == 1:
+            results = map(one_point, pts)
+        else:
+            import concurrent.futures as cf
+            ex = stack.enter_context(cf.ProcessPoolExecutor(max_workers=workers))
+            results = ex.map(one_point, pts)  # in order: the output does not depend on workers
+        rows = _print_rows(results, points, out)
+    return _summary(rows, out)
+
+
+def _print_rows(results, points, out):
     rows = []
-    if workers == 1:
-        results = (one_point(p) for p in pts)
-    else:
-        import concurrent.futures as cf
-        ex = cf.ProcessPoolExecutor(max_workers=workers)
-        results = ex.map(one_point, pts)
     for i, row in enumerate(results):
         rows.append(row)
         p, rec = row["point"], row["record"]
@@ -166,7 +173,7 @@ def materials(points=200, seed=20261125, workers=1, out=sys.stdout):
             print(f"{head} | yes {rec['nodes']} {row['seconds']:.1f}s "
                   f"{row['sls_seconds']:.1f}s | {' '.join(quot)}{ref}", file=out, flush=True)
         _progress(f"materials: {i + 1}/{points}")
-    return _summary(rows, out)
+    return rows
 
 
 def _summary(rows, out):

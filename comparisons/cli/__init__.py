@@ -12,7 +12,7 @@
                                 [--workers W | --scheduler ADDRESS] [--fields DIR]
     python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
-    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door] | --materials [--seed S] | --accepted [--seed S] [--cheap]] [--max-log2n K]
+    python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door] | --materials [--seed S] [--workers W] | --accepted [--seed S] [--cheap]] [--max-log2n K]
     python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
     python -m comparisons mastercurve ...           (comparisons/mastercurve.py)
 
