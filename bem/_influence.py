@@ -55,31 +55,51 @@ SAWTOOTH_RATIO = 0.3
 _A_LAGUERRE = 120.0
 
 
-def _kink_integral(m: int, nodes: int, a: float) -> float:
-    """``int_0^1 exp(-a t) c(X_m + t h) dt`` for an interval with a kink at t = 1/2.
+#: the two halves of an interval with a kink of c at its middle: (start, end, kink at the end)
+_KINK_HALVES = ((0.0, 0.5, True), (0.5, 1.0, False))
 
-    Composite Gauss-Legendre (16 points) on subintervals graded geometrically
-    (ratio 1/4) toward the kink, refined to width 2/a where the weight varies.
-    """
+
+def _kink_rule(lo: float, hi: float, kink_at_hi: bool, a: float):
+    """Nodes t and weights (without the factor exp(-a t)) of the rule of :func:`_kink_integral`
+    on one half: composite Gauss-Legendre (16 points) on subintervals graded geometrically
+    (ratio 1/4) toward the kink, refined to width 2/a where the weight varies."""
     g, gw = _leggauss(16)
+    length = hi - lo
+    dist = length * 0.25 ** np.arange(0, 27)
+    parts = [(hi - dist) if kink_at_hi else (lo + dist), np.array([lo, hi])]
+    if a * length > 2.0:
+        step = 2.0 / a
+        jmax = int(min(length / step, 40))
+        parts.append(lo + step * np.arange(1, jmax + 1))
+    b = np.unique(np.concatenate(parts))
+    b = b[(b >= lo) & (b <= hi)]
+    half = 0.5 * np.diff(b)
+    mid = 0.5 * (b[1:] + b[:-1])
+    t = (mid[:, None] + half[:, None] * g[None, :]).ravel()
+    return t, (half[:, None] * gw[None, :]).ravel()
+
+
+def _kink_integral(m: int, nodes: int, a: float, cache: dict | None = None) -> float:
+    """``int_0^1 exp(-a t) c(X_m + t h) dt`` for an interval with a kink at t = 1/2
+    (:func:`_kink_rule` on each half).
+
+    `cache` keeps, per grid, the nodes and kernel values of the halves whose rule does not
+    depend on a (no refinement, a <= 4): the terms of a Prony series share them.
+    """
     total = 0.0
-    for lo, hi, kink_at_hi in ((0.0, 0.5, True), (0.5, 1.0, False)):
-        length = hi - lo
-        dist = length * 0.25 ** np.arange(0, 27)
-        pts = set((hi - dist) if kink_at_hi else (lo + dist))
-        pts.update((lo, hi))
-        if a * length > 2.0:
-            step = 2.0 / a
-            jmax = int(min(length / step, 40))
-            pts.update(lo + step * np.arange(1, jmax + 1))
-        b = np.array(sorted(p for p in pts if lo <= p <= hi))
-        half = 0.5 * np.diff(b)
-        mid = 0.5 * (b[1:] + b[:-1])
-        t = (mid[:, None] + half[:, None] * g[None, :]).ravel()
-        w = (half[:, None] * gw[None, :]).ravel() * np.exp(-a * t)
-        x = (m + t) / nodes
-        vals = np.empty_like(x)
-        _kernels.panel_values(x, nodes, vals)
+    for k, (lo, hi, kink_at_hi) in enumerate(_KINK_HALVES):
+        shared = not a * (hi - lo) > 2.0
+        hit = cache.get((m, k)) if shared and cache is not None else None
+        if hit is None:
+            t, hw = _kink_rule(lo, hi, kink_at_hi, a)
+            x = (m + t) / nodes
+            vals = np.empty_like(x)
+            _kernels.panel_values(x, nodes, vals)
+            if shared and cache is not None:
+                cache[(m, k)] = t, hw, vals
+        else:
+            t, hw, vals = hit
+        w = hw * np.exp(-a * t)
         total += float(np.dot(w, vals))
     return total
 
@@ -184,6 +204,7 @@ class MemorySources:
         self.size = offsets.size
         dist = np.where(offsets >= 0, offsets, -offsets - 1)
         self.kinks = [(int(i), int(offsets[i])) for i in np.flatnonzero(dist == 0)]
+        self._kink_cache = {}
         self.bands = []
         lo = 1
         for hi, points in _SHARED_BANDS:
@@ -205,7 +226,7 @@ class MemorySources:
         for sel, points, vals in self.bands:
             src[sel] = vals @ _product_weights(a, points)
         for i, m in self.kinks:
-            src[i] = _kink_integral(m, self.nodes, a)
+            src[i] = _kink_integral(m, self.nodes, a, self._kink_cache)
         return src
 
 
