@@ -8,18 +8,19 @@ Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014).
 
 Units, stated once: lengths in 1/k (k = 2π/λ), pressures in E0/(1 − ν²), times in τ.  The inputs
 are the dimensionless groups: load p̃∞ = p∞(1 − ν²)/E0, speed V/V0 = Vτk, ratio E∞/E0 and hk;
-`ACCEPTED` lists the range of each and why.  `solve_si` is a thin SI front on top.
+`ACCEPTED` lists the range of each and why; a nonzero speed must also be at least
+`SPEED_MIN` (0 itself is the elastic limit).  `solve_si` is a thin SI front on top.
 
 This package never imports `bem` (the two roads are independent).
 """
 from viscosine import Fields
 
-from ._accepted import ACCEPTED, validate
+from ._accepted import ACCEPTED, SPEED_MIN, validate
 from ._result import Patch, Solution
 from .dimensional import solve_si
 from .fourier import fourier_solve
 from .full_contact import modulus, threshold_speed, transition_load
 from .solver import solve, sweep
 
-__all__ = ["ACCEPTED", "Fields", "Patch", "Solution", "fourier_solve", "modulus", "solve",
-           "solve_si", "sweep", "threshold_speed", "transition_load", "validate"]
+__all__ = ["ACCEPTED", "Fields", "Patch", "SPEED_MIN", "Solution", "fourier_solve", "modulus",
+           "solve", "solve_si", "sweep", "threshold_speed", "transition_load", "validate"]

@@ -20,11 +20,6 @@ import numpy as np
 
 import analytic
 
-#: the smallest nonzero speed analytic accepts: ACCEPTED["speed"] bounds the speed below by 0
-#: (the elastic limit, accepted too) and analytic's public API states this bound nowhere else
-SPEED_MIN = 1e-30
-
-
 def draw(rng):
     """One log-uniform point of the accepted box (a dict of solve's keywords)."""
     box = {name: analytic.ACCEPTED[name][:2]
@@ -34,8 +29,8 @@ def draw(rng):
         pt["penetration"] = 10.0 ** rng.uniform(math.log10(box["penetration"][0]), 0.0)
     else:
         pt["load"] = 10.0 ** rng.uniform(*(math.log10(b) for b in box["load"]))
-    pt["speed"] = (0.0 if rng.random() < 0.03 else
-                   10.0 ** rng.uniform(math.log10(SPEED_MIN), math.log10(box["speed"][1])))
+    low, high = math.log10(analytic.SPEED_MIN), math.log10(box["speed"][1])
+    pt["speed"] = 0.0 if rng.random() < 0.03 else 10.0 ** rng.uniform(low, high)
     ratio_max = box["ratio"][1]
     pt["ratio"] = min(1.0 + 10.0 ** rng.uniform(math.log10(2.3e-16), math.log10(ratio_max - 1.0)),
                       ratio_max)
