@@ -596,93 +596,26 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         mean σ = load (relative 1e-8); otherwise ``status`` 4 and a message naming what failed.
     """
     sigma = res["sigma"]
-    active = res["active"]
-    s = float(res["s"])
-    gap = res["gap"]
     n = grid.nodes
-    out = np.empty(4)
-    _kernels.contact_residuals(active, sigma, gap, out)
     mean_p = float(sigma.sum()) / n if grid.window else float(sigma.mean())
-    target = load if load is not None else mean_p
-    smax = float(sigma.max()) if sigma.size else 0.0
-    # the solver's, when it measured this grid's scalars (the same numbers, not made twice)
-    tau_f, tau_direct = res.get("friction") or (None, None)
-    if grid.window:  # no spectrum of a window: the dissipation and the direct forms in real space
-        if tau_f is None:
-            tau_f = _window_friction(sigma, grid, material, speed)
-        tau_direct = _window_direct_friction(sigma, grid)
-    elif tau_f is None or tau_direct is None:
-        tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
-    residuals = {
-        "complementarity": float(out[0]) / amp,
-        "contact_gap": float(out[1]) / amp,
-        "interpenetration": float(out[2]) / amp,
-        "negative_pressure": float(out[3]) / smax if smax > 0 else float(out[3]),
-        "load_balance": abs(mean_p - target) / target if target > 0 else abs(mean_p),
-        "krylov": float(res["relres"]) / amp,
-        "friction_mismatch": abs(tau_direct - tau_f) / abs(tau_f) if tau_f != 0 else 0.0,
-    }
+    tau_f, tau_direct = _result_friction(res, grid, material, speed)
+    residuals = _residuals(res, grid, amp, load if load is not None else mean_p, mean_p, tau_f,
+                           tau_direct)
     # panels across the thinnest pressure memory layer w τ_R (only reported, not a residual
     # that gates success): below one panel the edges carry an error of the order of the layer
     tau_r = material.relaxation_times
     layer = speed * min(tau_r) * n / _TWO_PI if (tau_r and speed > 0.0) else math.inf
-    full = bool(active.all())
-    warnings = []
-    if full:
-        patches = (_full_patch(sigma, grid.y, profile, mean_p),)
-        frac = 1.0
-        ka, ke, ke_hat = math.pi, None, patches[0].ke_hat
-    else:
-        patches = tuple(_patches(sigma, gap, active, grid.x, grid.h, profile, grid.y,
-                                 grid.window, edge_lags(material, speed, grid.h, grid.n)))
-        frac = float(sum(p.width for p in patches))
-        if len(patches) == 1:
-            ka, ke, ke_hat = patches[0].ka, patches[0].ke, patches[0].ke_hat
-        else:  # no single patch describes the contact (conventions)
-            ka = ke = ke_hat = None
-        narrow = min(p.panels for p in patches) if patches else 0
-        if narrow < FEW_PANELS:
-            warnings.append(f"a contact patch spans {narrow} panel(s): its edges, ka and ke "
-                            "carry an error of the order of a panel (refine N)")
-    penetration = (amp - grid.s_offset - s) / amp
-    separation = (grid.s_offset + s) / amp
-    if full and abs(separation) <= ROUNDOFF:
-        # in full contact s is the mean of the zero-mean samples of the profile, zero but for
-        # rounding: Δ = h exactly (conventions)
-        penetration, separation = 1.0, 0.0
-    elif 1.0 < penetration <= 1.0 + ROUNDOFF:
-        penetration, separation = 1.0, 0.0  # s within rounding of 0 just below the transition
-    if grid.window:
-        x_out, p_out, disp, gap_out, edges = _window_fields(sigma, gap, active, s, grid)
-    else:
-        edges = None  # the uniform grid of N panels
-        x_out, p_out = grid.x, sigma
-        disp = (gap + grid.y - s) / amp  # C sigma, as the solver's gap holds it
-        gap_out = np.where(active, 0.0, gap) / amp
+    full, patches, frac, ka, ke, ke_hat, warnings = _contact(res, grid, profile, material,
+                                                             speed, mean_p)
+    penetration, separation = _penetration(grid, float(res["s"]), amp, full)
+    x_out, p_out, disp, gap_out, edges = _result_fields(res, grid, amp)
     mu = tau_f / mean_p if mean_p > 0 else math.nan
-    status = int(res["status"])
-    success = status == CONVERGED
-    message = res["message"]
-    if status == STATUS_TARGET:
-        message = (f"{message}; residuals of N={n}: "
-                   + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
-    elif not success:
-        message = (f"not converged: {message}; residuals "
-                   + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
-    else:
-        sc = {"contact_fraction": frac, "ka": ka, "ke": ke, "ke_hat": ke_hat,
-              "penetration": penetration, "separation": separation, "tau_f": tau_f, "mu": mu,
-              "load": mean_p}
-        bad = _problems(sc, {"pressure": p_out, "displacement": disp, "gap": gap_out}, mean_p,
-                        load, ROUNDOFF * (grid.scale / amp))
-        if bad:
-            success, status = False, STATUS_INVALID
-            message = "invalid result: " + "; ".join(bad)
-        elif layer < 1.0 and not full:
-            note = (f"the pressure memory layer spans {layer:.2g} panel: contact edges carry an "
-                    "error of the order of the layer (refine N to resolve it)")
-            message += "; " + note
-            warnings.append(note)
+    sc = {"contact_fraction": frac, "ka": ka, "ke": ke, "ke_hat": ke_hat,
+          "penetration": penetration, "separation": separation, "tau_f": tau_f, "mu": mu,
+          "load": mean_p}
+    success, status, message = _verdict(
+        res, n, residuals, sc, {"pressure": p_out, "displacement": disp, "gap": gap_out}, load,
+        ROUNDOFF * (grid.scale / amp), layer, full, warnings)
     ratio = getattr(material, "ratio", None)
     return BemResult(
         success=success, status=status, message=message, nit=int(res["nit"]),
@@ -696,3 +629,107 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         hk=profile.hk if isinstance(profile, Sinusoid) else None,
         warnings=tuple(warnings), error_estimate=error_estimate, rtol=rtol,
         extra_diagnostics=dict(extra_diagnostics or {}), edges=edges)
+
+
+def _result_friction(res, grid, material, speed):
+    """τf by the dissipation and by the direct form (their difference is a residual): the
+    solver's, when it measured this grid's scalars (the same numbers, not made twice)."""
+    sigma = res["sigma"]
+    tau_f, tau_direct = res.get("friction") or (None, None)
+    if grid.window:  # no spectrum of a window: the dissipation and the direct forms in real space
+        if tau_f is None:
+            tau_f = _window_friction(sigma, grid, material, speed)
+        tau_direct = _window_direct_friction(sigma, grid)
+    elif tau_f is None or tau_direct is None:
+        tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
+    return tau_f, tau_direct
+
+
+def _residuals(res, grid, amp, target, mean_p, tau_f, tau_direct):
+    """The residuals of `BemResult` (``target``: the load asked for, else the mean pressure)."""
+    sigma = res["sigma"]
+    out = np.empty(4)
+    _kernels.contact_residuals(res["active"], sigma, res["gap"], out)
+    smax = float(sigma.max()) if sigma.size else 0.0
+    return {
+        "complementarity": float(out[0]) / amp,
+        "contact_gap": float(out[1]) / amp,
+        "interpenetration": float(out[2]) / amp,
+        "negative_pressure": float(out[3]) / smax if smax > 0 else float(out[3]),
+        "load_balance": abs(mean_p - target) / target if target > 0 else abs(mean_p),
+        "krylov": float(res["relres"]) / amp,
+        "friction_mismatch": abs(tau_direct - tau_f) / abs(tau_f) if tau_f != 0 else 0.0,
+    }
+
+
+def _contact(res, grid, profile, material, speed, mean_p):
+    """The contact patches and their scalars: (full contact?, patches, contact fraction, ka,
+    ke, kê, warnings), ka, ke and kê None with several patches (no single patch describes the
+    contact: conventions), ke None in full contact."""
+    sigma, active = res["sigma"], res["active"]
+    warnings = []
+    if active.all():
+        patches = (_full_patch(sigma, grid.y, profile, mean_p),)
+        return True, patches, 1.0, math.pi, None, patches[0].ke_hat, warnings
+    patches = tuple(_patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y,
+                             grid.window, edge_lags(material, speed, grid.h, grid.n)))
+    frac = float(sum(p.width for p in patches))
+    if len(patches) == 1:
+        ka, ke, ke_hat = patches[0].ka, patches[0].ke, patches[0].ke_hat
+    else:
+        ka = ke = ke_hat = None
+    narrow = min(p.panels for p in patches) if patches else 0
+    if narrow < FEW_PANELS:
+        warnings.append(f"a contact patch spans {narrow} panel(s): its edges, ka and ke "
+                        "carry an error of the order of a panel (refine N)")
+    return False, patches, frac, ka, ke, ke_hat, warnings
+
+
+def _penetration(grid, s, amp, full):
+    """(Δ/h, mean separation over h) of the solver's separation ``s``."""
+    penetration = (amp - grid.s_offset - s) / amp
+    separation = (grid.s_offset + s) / amp
+    if full and abs(separation) <= ROUNDOFF:
+        # in full contact s is the mean of the zero-mean samples of the profile, zero but for
+        # rounding: Δ = h exactly (conventions)
+        penetration, separation = 1.0, 0.0
+    elif 1.0 < penetration <= 1.0 + ROUNDOFF:
+        penetration, separation = 1.0, 0.0  # s within rounding of 0 just below the transition
+    return penetration, separation
+
+
+def _result_fields(res, grid, amp):
+    """(x/λ, pressure, displacement over h, gap over h, cell edges or None) of the result."""
+    sigma, gap, active, s = res["sigma"], res["gap"], res["active"], float(res["s"])
+    if grid.window:
+        return _window_fields(sigma, gap, active, s, grid)
+    # the uniform grid of N panels
+    disp = (gap + grid.y - s) / amp  # C sigma, as the solver's gap holds it
+    return grid.x, sigma, disp, np.where(active, 0.0, gap) / amp, None
+
+
+def _verdict(res, n, residuals, sc, fields, load, gap_roundoff, layer, full, warnings):
+    """(success, status, message) of the result: the solver's status, with the residuals where
+    it did not converge; a converged answer passed through the validity gate (`_problems`) or
+    refused (STATUS_INVALID).  A memory layer under a panel (``layer`` panels) at the edges of a
+    partial contact is added to the message and to ``warnings``."""
+    status = int(res["status"])
+    success = status == CONVERGED
+    message = res["message"]
+    if status == STATUS_TARGET:
+        message = (f"{message}; residuals of N={n}: "
+                   + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
+    elif not success:
+        message = (f"not converged: {message}; residuals "
+                   + ", ".join(f"{k}={v:.3e}" for k, v in residuals.items()))
+    else:
+        bad = _problems(sc, fields, sc["load"], load, gap_roundoff)
+        if bad:
+            success, status = False, STATUS_INVALID
+            message = "invalid result: " + "; ".join(bad)
+        elif layer < 1.0 and not full:
+            note = (f"the pressure memory layer spans {layer:.2g} panel: contact edges carry an "
+                    "error of the order of the layer (refine N to resolve it)")
+            message += "; " + note
+            warnings.append(note)
+    return success, status, message

@@ -187,25 +187,7 @@ def _estimate(scalars, material, speed):
     # exact panel coefficients give to O(1/N^2) whatever the memory lengths (Appendix B)
     full = all(sc["contact_fraction"] == 1.0 for _, sc in run)
     shift = 0.0 if full else _unresolved_memory(material, speed, n0, a.get("panels"))
-    note = None
-    if all("mu_law" in sc for _, sc in run) and est.get("mu") is not None:
-        # every grid of the run has the first-order memory law too: its estimate is its grids'
-        # differences and its remainder; the form with the smaller estimate gives the answer
-        law = max(sc["lag_law"] for _, sc in run)
-        law_est = {}
-        for k in ("tau_f", "mu"):
-            vals = [sc[k + "_law"] for _, sc in run]
-            scale = abs(vals[0])
-            bound = _first_order_bound(vals)
-            law_est[k] = (ESTIMATE_SAFETY * bound / scale if scale > 0 else math.inf) \
-                + ESTIMATE_SAFETY * law
-        use = law_est["mu"] < est["mu"]
-        run[0][1]["use_law"] = use
-        if use:
-            est.update(law_est)
-            note = (f"friction from the first-order memory law (every memory far under the "
-                    f"fitted distances); its remainder, up to {law:.1e} relative, is in the "
-                    "estimate")
+    note = _choose_friction_form(run, est)
     if shift > 0.0:
         for k in est:
             if est[k] is not None:
@@ -214,6 +196,30 @@ def _estimate(scalars, material, speed):
                 f"panels at N={n0}: its edge shift, up to {shift:.1e}, is in the estimate")
         note = memo if note is None else f"{note}; {memo}"
     return est, reason, note
+
+
+def _choose_friction_form(run, est):
+    """Where every grid of the run (fine to coarse) has the first-order memory law too, the
+    law's estimate of tau_f and mu (its grids' differences and its remainder); the form with the
+    smaller estimate of mu gives the answer (``use_law`` on the finest grid's scalars, and
+    ``est`` updated).  Returns the note saying the law was chosen, else None."""
+    if not (all("mu_law" in sc for _, sc in run) and est.get("mu") is not None):
+        return None
+    law = max(sc["lag_law"] for _, sc in run)
+    law_est = {}
+    for k in ("tau_f", "mu"):
+        vals = [sc[k + "_law"] for _, sc in run]
+        scale = abs(vals[0])
+        bound = _first_order_bound(vals)
+        law_est[k] = (ESTIMATE_SAFETY * bound / scale if scale > 0 else math.inf) \
+            + ESTIMATE_SAFETY * law
+    use = law_est["mu"] < est["mu"]
+    run[0][1]["use_law"] = use
+    if not use:
+        return None
+    est.update(law_est)
+    return (f"friction from the first-order memory law (every memory far under the fitted "
+            f"distances); its remainder, up to {law:.1e} relative, is in the estimate")
 
 
 def _first_order_bound(vals):

@@ -101,52 +101,17 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
             raise ValueError(f"{name}={bem_options[name]!r} is not allowed: solve_si takes the "
                              "problem in SI (profile as heights= [m], the material as "
                              "material= or E0, Einf, tau_creep)")
-    profile = None
-    if heights is not None:
-        if amplitude is not None:
-            raise ValueError(f"amplitude={amplitude!r} is not allowed with heights=: the "
-                             "sampled profile fixes its amplitude (max y − mean y)")
-        lam = real("wavelength", wavelength, "a finite length > 0", lambda v: v > 0.0, unit="m")
-        k = 2.0 * math.pi / lam
-        ky = reals("heights", heights, "a 1-D array of heights", unit="m") * k
-        profile = SampledProfile(ky)
-        amplitude = profile.amplitude / k
-    model = None
-    if material is not None:
-        from viscosine.materials import Maxwell
-        sls = {k: v for k, v in (("E0", E0), ("Einf", Einf), ("tau", tau),
-                                  ("tau_creep", tau_creep), ("tau_relax", tau_relax))
-               if v is not None}
-        if sls:
-            name, value = next(iter(sls.items()))
-            raise ValueError(f"{name}={value!r} is not allowed with material=: the material "
-                             "fixes the moduli and times")
-        if not isinstance(material, Maxwell):
-            raise ValueError(f"material={material!r} is not allowed: a "
-                             "viscosine.materials.Maxwell (moduli in Pa, times in s, or a DMA "
-                             "fit whose data name their modulus unit)")
-        model = material.in_pascals()
-        sc = _si.material_scales(E_ref=model.E_r, tau_ref=1.0, nu=nu, wavelength=wavelength,
-                                 amplitude=amplitude, speed=speed, mean_pressure=mean_pressure,
-                                 penetration=penetration)
-        prony = Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0))
-    else:
-        sc = _si.scales(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax,
-                        nu=nu, wavelength=wavelength, amplitude=amplitude, speed=speed,
-                        mean_pressure=mean_pressure, penetration=penetration)
-        prony = Prony.standard_linear_solid(sc.ratio)
-    groups = _si.groups(sc, validate, ACCEPTED, with_hk=("load",))
-    if profile is not None:
-        del groups["hk"]
-        groups["profile"] = profile
-    if model is not None:
-        groups["material"] = prony
-    validate(**{k: v for k, v in groups.items() if k in ("material", "profile")})
+    profile, amplitude = _si_profile(heights, amplitude, wavelength)
+    model, sc, prony = _si_material(
+        material, {"E0": E0, "Einf": Einf, "tau": tau, "tau_creep": tau_creep,
+                   "tau_relax": tau_relax},
+        {"nu": nu, "wavelength": wavelength, "amplitude": amplitude, "speed": speed,
+         "mean_pressure": mean_pressure, "penetration": penetration})
+    groups = _bem_groups(sc, profile, prony if model is not None else None)
     validate(**{k: v for k, v in bem_options.items()})
     sol = _solver.solve(**groups, **bem_options)
-    pfc = None
-    if profile is None:
-        pfc = 0.5 * sc.hk / abs(complex(prony.jstar([1.0], sc.speed)[0]))
+    pfc = (None if profile is not None
+           else 0.5 * sc.hk / abs(complex(prony.jstar([1.0], sc.speed)[0])))
     if model is not None and sol.success and sc.speed > 0.0:
         # the contact's harmonics n = 1 … ⌈λ/2a⌉, at ω_n = n k V (rad/s)
         top = math.ceil(1.0 / max(float(sol.contact_fraction), 1e-300) - 1e-9)
@@ -154,3 +119,55 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         if text is not None:
             warnings.warn(text, UserWarning, stacklevel=2)
     return _si.result(sol, sc, full_contact_load=pfc, threshold_speed=None)
+
+
+def _bem_groups(sc, profile, prony):
+    """The keyword arguments of `bem.solve` for the SI problem ``sc``, each checked against
+    `bem.ACCEPTED`: the dimensionless groups, ``profile`` (when sampled) in place of hk, and
+    ``prony`` (a Maxwell series' creep function) in place of the solid's ratio."""
+    groups = _si.groups(sc, validate, ACCEPTED, with_hk=("load",))
+    if profile is not None:
+        del groups["hk"]
+        groups["profile"] = profile
+    if prony is not None:
+        groups["material"] = prony
+    validate(**{k: v for k, v in groups.items() if k in ("material", "profile")})
+    return groups
+
+
+def _si_profile(heights, amplitude, wavelength):
+    """(profile, amplitude [m]): the `SampledProfile` of k y from ``heights`` [m] and its
+    amplitude, or (None, ``amplitude``) for the sinusoid."""
+    if heights is None:
+        return None, amplitude
+    if amplitude is not None:
+        raise ValueError(f"amplitude={amplitude!r} is not allowed with heights=: the "
+                         "sampled profile fixes its amplitude (max y − mean y)")
+    lam = real("wavelength", wavelength, "a finite length > 0", lambda v: v > 0.0, unit="m")
+    k = 2.0 * math.pi / lam
+    ky = reals("heights", heights, "a 1-D array of heights", unit="m") * k
+    profile = SampledProfile(ky)
+    return profile, profile.amplitude / k
+
+
+def _si_material(material, sls, problem):
+    """(model in Pa or None, scales, `Prony`) of the material: a Maxwell series ``material``
+    (reference units its relaxed modulus and 1 s), else the standard linear solid of ``sls``
+    (E0, Einf and one of its times, eq. 2.3).  ``problem``: the SI inputs the scales take
+    besides (nu, wavelength, amplitude, speed, mean_pressure, penetration)."""
+    if material is None:
+        sc = _si.scales(**sls, **problem)
+        return None, sc, Prony.standard_linear_solid(sc.ratio)
+    from viscosine.materials import Maxwell
+    given = {k: v for k, v in sls.items() if v is not None}
+    if given:
+        name, value = next(iter(given.items()))
+        raise ValueError(f"{name}={value!r} is not allowed with material=: the material "
+                         "fixes the moduli and times")
+    if not isinstance(material, Maxwell):
+        raise ValueError(f"material={material!r} is not allowed: a "
+                         "viscosine.materials.Maxwell (moduli in Pa, times in s, or a DMA "
+                         "fit whose data name their modulus unit)")
+    model = material.in_pascals()
+    sc = _si.material_scales(E_ref=model.E_r, tau_ref=1.0, **problem)
+    return model, sc, Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0))

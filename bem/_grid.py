@@ -22,6 +22,7 @@ A grid starts from the solved coarser one (`_prolong`), else from the elastic co
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -30,12 +31,10 @@ from ._assemble import _patches, _runs
 from ._influence import influence_coefficients_nd
 from ._inputs import Prony
 from ._operator import CirculantOperator, gmres
-from ._result import CONVERGED, CYCLED, KRYLOV_FAILED, OUTER_EXHAUSTED
+from ._result import (CONVERGED, CYCLED, KRYLOV_FAILED, MESSAGES, OUTER_EXHAUSTED,
+                      WINDOW_FAILED)
 
 
-#: status of a contact-window grid whose contact reaches the window's ends (never returned:
-#: the adaptive mesh then answers from its periodic grids)
-WINDOW_FAILED = 6
 #: first grid of the refinement sequence (coarser grids only ever gave a start)
 START_NODES = 512
 #: grids from which a mostly-in-contact step solves on the free panels (_dual_solve): there the
@@ -196,15 +195,25 @@ def _dual_floor(grid: _Grid):
     return 16.0 * np.finfo(float).eps * grid.op.max_inverse * grid.amp
 
 
+@dataclass
+class _Mode:
+    """How the active-set iteration on one grid steps now (`_solve_grid`, `_judge`)."""
+
+    loose: bool  # a cold start's inexact steps (COLD_KRYLOV_TOL), until the set settles
+    dual: bool   # the free-panel step (`_dual_solve`) where most panels are in contact
+    roundoff: float = ACTIVE_SET_ROUNDOFF  # the active-set rule's allowance
+    seen: dict = field(default_factory=dict)  # key of each active set -> its outer step
+
+
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
                 max_inner, cold=False, widen=True):
     """Primal-dual active-set iteration on one grid.  ``cold``: the start is far from the
     answer (no coarser grid gave it): the Krylov solves stop at COLD_KRYLOV_TOL and retreats are
     sped up (`_speed_up_retreat`) until the active set settles; then every step is solved to
     tol, and only such steps decide convergence.  ``widen``: a stagnated Krylov solve is tried
-    once more with a wider restart (`_with_retry`)."""
+    once more with a wider restart (`_with_retry`).  Each outer step is a linear solve on the
+    active set (`_step`) and the active-set rule's verdict on it (`_judge`)."""
     n = grid.n
-    seen = {}
     inner = []
     status, message = OUTER_EXHAUSTED, "outer iterations exhausted"
     relres = 0.0
@@ -212,14 +221,12 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     s = s0
     gap = None  # of the current sigma, once solved for
     new = np.empty(n, dtype=np.bool_)
-    roundoff = ACTIVE_SET_ROUNDOFF
     # the free-panel step on a large grid, unless its rounding floor is a visible part of the
     # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
-    dual = (load is not None and n >= DUAL_MIN_NODES and not grid.window
-            and _dual_floor(grid) <= DUAL_MAX_FLOOR * load)
-    loose = cold and COLD_KRYLOV_TOL > tol
+    mode = _Mode(loose=cold and COLD_KRYLOV_TOL > tol,
+                 dual=(load is not None and n >= DUAL_MIN_NODES and not grid.window
+                       and _dual_floor(grid) <= DUAL_MAX_FLOOR * load))
     for it in range(1, max_outer + 1):
-        step_tol = COLD_KRYLOV_TOL if loose else tol
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
         if active.all() and load is None and sep != 0.0:
@@ -227,86 +234,111 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         if active.all() and grid.window:
             status, message = WINDOW_FAILED, "the contact fills its window"
             break
-        if active.all():
-            # full contact: C sigma = y - s on every panel; mean(C sigma) = 0 gives s
-            s = float(grid.y.mean()) if load is not None else 0.0
-            sigma = grid.op.pseudo_solve(grid.y) + (load if load is not None else 0.0)
-            inner.append(0)
-            relres = 0.0
-            ok = True
-            product = None
-        elif dual and 2 * int(np.count_nonzero(active)) > n:
-            # most panels in contact on a large grid: solve for the displacements of the few
-            # free panels instead (memory and work scale with the free set, not the contact)
-            free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
-            if gap is None:
-                gap = grid.op.apply(sigma) - grid.y + s
-            x0 = gap[free] + grid.y[free]
-            gap = None  # memory
-            sigma, s, its, relres, ok, product = _with_retry(
-                lambda r: _dual_solve(grid, free, load, x0, step_tol, r, max_inner), restart,
-                free.size, widen)
-            inner.append(its)
-        else:
-            idx = np.flatnonzero(active).astype(np.int32)  # N < 2^31; memory
-            x0 = sigma[idx]
-            if load is not None:
-                x0 = np.append(x0, s)
-            gap = None  # memory
-            sigma, s, its, relres, ok, product = _with_retry(
-                lambda r: _linear_solve(grid, idx, load, sep, x0, step_tol, r, max_inner), restart,
-                idx.size, widen)
-            inner.append(its)
-        if product is None:
-            gap = grid.op.apply(sigma) - grid.y + s
-        else:  # C sigma from the Krylov solve's last product: the same numbers
-            gap = product
-            gap -= grid.y
-            gap += s
-            del product
+        held, gap = [gap], None  # memory: _step lets go of the old gaps before its solve
+        sigma, s, its, relres, ok, gap = _step(
+            grid, active, sigma, s, held, load, sep, mode.dual,
+            COLD_KRYLOV_TOL if mode.loose else tol, restart, max_inner, widen)
+        inner.append(its)
         if not ok:
             status = KRYLOV_FAILED
             message = (f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
                        + (f" = {relres / grid.scale:.3e} of the window's drop)"
                           if grid.window else ")"))
             break
-        key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
-        if loose and (key is None or key in seen):
-            # the inexact steps have settled (or cycle): from here every step is solved to tol
-            loose = False
-            seen.clear()
-            if key is None:
-                continue
-        if loose and key is not None and _speed_up_retreat(active, new):
-            key = np.packbits(new).tobytes()
-        if dual and key is not None and (key in seen or it >= DUAL_MAX_STEPS):
-            # the free-panel steps do not settle: their pressures carry the rounding that C^+
-            # amplifies, and near full contact (gaps of 1e-6 h) edge panels whose pressure is
-            # below that flip back and forth; the primal step decides them from here on
-            dual = False
-            seen.clear()
-        if key in seen and roundoff < CYCLE_ROUNDOFF:
-            # the sets repeat: the panels that flip may all sit within the validity gate's
-            # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
-            # them with that allowance from here on (a second cycle is final)
-            roundoff = CYCLE_ROUNDOFF
-            seen.clear()
-            key = _next_active_set(active, sigma, gap, new, roundoff, grid.scale)
+        key, verdict = _judge(mode, active, sigma, gap, new, grid, it)
+        if verdict is not None:
+            status, message = verdict
+            break
         if key is None:
-            status, message = CONVERGED, ("converged" if roundoff < CYCLE_ROUNDOFF else
-                                  "converged (at the validity gate's round-off, after a cycle)")
-            if grid.window and (active[0] or active[-1]):
-                status, message = WINDOW_FAILED, "the contact reaches an end of its window"
-            break
-        if key in seen:
-            status, message = CYCLED, f"active set cycles (outer step {it} repeats step {seen[key]})"
-            break
-        seen[key] = it
+            continue  # the inexact steps have settled: this set again, solved to tol
+        mode.seen[key] = it
         active = new.copy()
     if gap is None:  # stopped before a solve (a window that its contact fills)
         gap = np.zeros(n)
     return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
             "inner": inner, "relres": relres, "status": status, "message": message}
+
+
+def _step(grid: _Grid, active, sigma, s, held, load, sep, dual, tol, restart, max_inner,
+          widen):
+    """One outer step's linear solve on the active set: full contact directly, the free-panel
+    step (``dual``, most panels in contact), else the primal one on the contact panels.
+    ``held``: a list holding the gaps of ``sigma`` (or None), emptied here (memory).
+    Returns (sigma, s, Krylov iterations, relres, ok, gaps of the new sigma)."""
+    gap = held.pop()
+    n = grid.n
+    product = None
+    if active.all():
+        # full contact: C sigma = y - s on every panel; mean(C sigma) = 0 gives s
+        s = float(grid.y.mean()) if load is not None else 0.0
+        sigma = grid.op.pseudo_solve(grid.y) + (load if load is not None else 0.0)
+        its, relres, ok = 0, 0.0, True
+    elif dual and 2 * int(np.count_nonzero(active)) > n:
+        # most panels in contact on a large grid: solve for the displacements of the few
+        # free panels instead (memory and work scale with the free set, not the contact)
+        free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
+        if gap is None:
+            gap = grid.op.apply(sigma) - grid.y + s
+        x0 = gap[free] + grid.y[free]
+        gap = None  # memory
+        sigma, s, its, relres, ok, product = _with_retry(
+            lambda r: _dual_solve(grid, free, load, x0, tol, r, max_inner), restart,
+            free.size, widen)
+    else:
+        idx = np.flatnonzero(active).astype(np.int32)  # N < 2^31; memory
+        x0 = sigma[idx]
+        if load is not None:
+            x0 = np.append(x0, s)
+        gap = None  # memory
+        sigma, s, its, relres, ok, product = _with_retry(
+            lambda r: _linear_solve(grid, idx, load, sep, x0, tol, r, max_inner), restart,
+            idx.size, widen)
+    if product is None:
+        gap = grid.op.apply(sigma) - grid.y + s
+    else:  # C sigma from the Krylov solve's last product: the same numbers
+        gap = product
+        gap -= grid.y
+        gap += s
+        del product
+    return sigma, s, its, relres, ok, gap
+
+
+def _judge(mode: _Mode, active, sigma, gap, new, grid: _Grid, it):
+    """The active-set rule after outer step ``it``, the next set into ``new``.  Returns (key,
+    verdict): verdict (status, message) when the iteration stops (converged, or cycled), else
+    None, with key that of the next set, or None when a cold start's inexact steps have just
+    settled (the same set is then solved again, to tol)."""
+    key = _next_active_set(active, sigma, gap, new, mode.roundoff, grid.scale)
+    if mode.loose and (key is None or key in mode.seen):
+        # the inexact steps have settled (or cycle): from here every step is solved to tol
+        mode.loose = False
+        mode.seen.clear()
+        if key is None:
+            return None, None
+    if mode.loose and key is not None and _speed_up_retreat(active, new):
+        key = np.packbits(new).tobytes()
+    if mode.dual and key is not None and (key in mode.seen or it >= DUAL_MAX_STEPS):
+        # the free-panel steps do not settle: their pressures carry the rounding that C^+
+        # amplifies, and near full contact (gaps of 1e-6 h) edge panels whose pressure is
+        # below that flip back and forth; the primal step decides them from here on
+        mode.dual = False
+        mode.seen.clear()
+    if key in mode.seen and mode.roundoff < CYCLE_ROUNDOFF:
+        # the sets repeat: the panels that flip may all sit within the validity gate's
+        # round-off (a stiff edge: 1e-2 of max σ one way, 1e-12 h of gap the other); judge
+        # them with that allowance from here on (a second cycle is final)
+        mode.roundoff = CYCLE_ROUNDOFF
+        mode.seen.clear()
+        key = _next_active_set(active, sigma, gap, new, mode.roundoff, grid.scale)
+    if key is None:
+        if grid.window and (active[0] or active[-1]):
+            return None, (WINDOW_FAILED, "the contact reaches an end of its window")
+        return None, (CONVERGED, MESSAGES[CONVERGED] if mode.roundoff < CYCLE_ROUNDOFF else
+                      "converged (at the validity gate's round-off, after a cycle)")
+    if key in mode.seen:
+        return key, (CYCLED, f"active set cycles (outer step {it} repeats step "
+                             f"{mode.seen[key]})")
+    return key, None
 
 
 def _speed_up_retreat(active, new):
@@ -417,7 +449,7 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
         s = float(grid.y.mean())
         return {"sigma": full, "s": s, "active": np.ones(n, np.bool_),
                 "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
-                "relres": 0.0, "status": CONVERGED, "message": "converged"}
+                "relres": 0.0, "status": CONVERGED, "message": MESSAGES[CONVERGED]}
     if best is None and elastic is not None:
         # no coarser grid: start from the elastic contact on this grid (a symmetric
         # positive-definite problem, on which the active-set method converges from anywhere)

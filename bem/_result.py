@@ -28,6 +28,9 @@ MESSAGES = MappingProxyType({
     STATUS_INVALID: "converged, but the answer failed the validity gate",
     STATUS_TARGET: "the adaptive mesh stopped before its estimated errors met rtol",
 })
+#: status of a contact-window grid whose contact reaches the window's ends: never on a result
+#: (the adaptive mesh then answers from its periodic grids), hence not in MESSAGES
+WINDOW_FAILED = 6
 
 
 @dataclass(frozen=True)

@@ -5,10 +5,18 @@ started from the contact of the one before: the sub-panel contact edges of one g
 active set on the next, so that a grid usually needs two or three outer steps) until the error
 estimate (:mod:`bem._estimate`) meets ``rtol``; a fixed ``nodes`` solves N/4^l, ..., N/4, N.  A
 single narrow patch hands over to a contact window (:mod:`bem._window`).
+
+The steps of `solve`: `_problem` checks the inputs and fills in the defaults (one `_Problem`);
+`_refine` runs the sequence of grids (`_sizes`), each solved with its retries (`_solve_level`)
+and then measured (`_level`), a contact window tried where it is wanted (`_try_window`);
+`_grids_result` decides what the grids answer (`_short_of_target` flags a target not met) and
+assembles the result.
 """
 from __future__ import annotations
 
 import warnings
+from dataclasses import dataclass, field
+from typing import Any
 
 from viscosine import DEFAULT_RTOL, ViscosineWarning
 from viscosine._checks import bad, positive_int, real
@@ -118,6 +126,57 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     ----------
     Eq. (2.2)-(2.5) (operator), (3.1) (friction), Appendix B (full contact).
     """
+    return _announced(_refine(_problem(
+        load=load, penetration=penetration, speed=speed, profile=profile, material=material,
+        ratio=ratio, hk=hk, nodes=nodes, rtol=rtol, max_nodes=max_nodes, tol=tol,
+        max_outer=max_outer, restart=restart, max_inner=max_inner, nested=nested)))
+
+
+# --------------------------------------------------------------------------
+# The inputs, checked and completed
+# --------------------------------------------------------------------------
+@dataclass(frozen=True)
+class _Problem:
+    """The inputs of `solve`, checked, with their defaults filled in (units of :mod:`bem`).
+
+    ``rtol`` and ``max_nodes`` are None on a fixed mesh (``nodes`` given), ``nodes`` None on
+    the adaptive one; exactly one of ``load`` and ``penetration`` is None.  ``amp`` is h k,
+    ``control`` and ``asked`` the control and its value, ``sep`` the separation
+    ``h k (1 - Delta/h)`` asked for under penetration control (else None).
+    """
+
+    profile: Any
+    material: Prony
+    speed: float
+    load: float | None
+    penetration: float | None
+    nodes: int | None
+    rtol: float | None
+    max_nodes: int | None
+    tol: float
+    max_outer: int
+    restart: int
+    max_inner: int
+    nested: Any  # as given: only its truth counts
+    amp: float = field(init=False)
+    control: str = field(init=False)
+    asked: float = field(init=False)
+    sep: float | None = field(init=False)
+
+    def __post_init__(self):
+        amp = float(self.profile.amplitude)
+        by_load = self.load is not None
+        object.__setattr__(self, "amp", amp)
+        object.__setattr__(self, "control", "load" if by_load else "penetration")
+        object.__setattr__(self, "asked", self.load if by_load else self.penetration)
+        object.__setattr__(self, "sep", None if by_load else amp * (1.0 - self.penetration))
+
+
+def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, rtol, max_nodes,
+             tol, max_outer, restart, max_inner, nested) -> _Problem:
+    """`solve`'s inputs as one `_Problem`; ValueError (naming the parameter, its value and what
+    is allowed) on the first bad one, in the order: the control, speed, `validate`'s
+    (bem.ACCEPTED), the options of a fixed or an adaptive mesh, the solver's options."""
     if (load is None) == (penetration is None):
         raise bad("load", load, "exactly one of load and penetration "
                   f"(got load={load!r}, penetration={penetration!r})")
@@ -130,9 +189,6 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         profile = Sinusoid(1.0 if hk is None else hk)
     if material is None:
         material = Prony.standard_linear_solid(3.0 if ratio is None else ratio)
-    speed = float(speed)
-    load = None if load is None else float(load)
-    penetration = None if penetration is None else float(penetration)
     if nodes is not None:
         nodes = positive_int("nodes", nodes, 8)
         for name, v in (("rtol", rtol), ("max_nodes", max_nodes)):
@@ -144,133 +200,206 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
             raise bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
         rtol = DEFAULT_RTOL if rtol is None else float(rtol)
         max_nodes = ADAPTIVE_MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
-    tol = real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2)
-    max_outer = positive_int("max_outer", max_outer, 1)
-    restart = positive_int("restart", restart, 1)
-    max_inner = positive_int("max_inner", max_inner, 1)
+    return _Problem(
+        profile=profile, material=material, speed=float(speed),
+        load=None if load is None else float(load),
+        penetration=None if penetration is None else float(penetration),
+        nodes=nodes, rtol=rtol, max_nodes=max_nodes,
+        tol=real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2),
+        max_outer=positive_int("max_outer", max_outer, 1),
+        restart=positive_int("restart", restart, 1),
+        max_inner=positive_int("max_inner", max_inner, 1), nested=nested)
 
-    amp = float(profile.amplitude)
-    control, asked = ("load", load) if load is not None else ("penetration", penetration)
-    sep = None if penetration is None else amp * (1.0 - penetration)
-    if nodes is not None:  # the fixed grid and the halvings below it down to START_NODES
-        low = max(8, min(START_NODES // 2, nodes // 4))  # at least N/4 for an estimate
-        sizes = [nodes]
-        while nested and sizes[-1] % 2 == 0 and sizes[-1] // 2 >= low:
+
+# --------------------------------------------------------------------------
+# The sequence of grids
+# --------------------------------------------------------------------------
+@dataclass
+class _Run:
+    """What the sequence of grids has found so far (`_refine`, `_level`)."""
+
+    levels: list = field(default_factory=list)   # per grid: (nodes, nit, inner its, status)
+    scalars: list = field(default_factory=list)  # (nodes, scalars) of the converged grids
+    best: tuple | None = None  # (res, grid) of the finest grid so far: the next grid's start
+    last: tuple | None = None  # the same, kept for the answer
+    good: tuple | None = None  # (res, grid) of the finest converged grid
+    estimate: dict | None = None
+    reason: str | None = None  # why the estimate is not trusted (or the grids gave up)
+    note: str | None = None    # what the estimate carries for unresolved memory lengths
+    reached: int | None = None  # the grid whose estimate met rtol
+    failed: int = 0            # consecutive grids that did not converge
+    stopped: bool = False      # no finer grid is to be solved
+    window: dict | None = None  # what the contact window gave, once tried
+
+
+def _sizes(p: _Problem) -> list:
+    """The grids to solve, coarse to fine: a fixed mesh's N and (nested) its exact halvings
+    down to START_NODES/2, or to N/4 where that is coarser (the estimate needs N/4, N/2, N),
+    never below 8 panels; on the adaptive mesh START_NODES, 2 START_NODES, ... up to
+    max_nodes."""
+    if p.nodes is not None:
+        low = max(8, min(START_NODES // 2, p.nodes // 4))
+        sizes = [p.nodes]
+        while p.nested and sizes[-1] % 2 == 0 and sizes[-1] // 2 >= low:
             sizes.append(sizes[-1] // 2)
         sizes.reverse()
-    else:
-        sizes = []
-        n = START_NODES
-        while n <= max_nodes:
-            sizes.append(n)
-            n *= 2
-    levels = []      # one entry per grid: (nodes, nit, inner iterations, status)
-    scalars = []     # (nodes, dict of scalars) of the converged grids, coarse to fine
-    best = None      # (res, grid) of the finest converged grid
-    estimate = None
-    reason = None
-    note = None      # what the estimate carries for unresolved memory lengths
-    reached = None
-    failed = 0
-    good = None      # (res, grid) of the finest converged grid
-    window = None    # what the contact window gave, once tried
-    harmonic = (profile, Prony(abs(complex(material.jstar([1.0], speed)[0]))))
-    for n in sizes:
-        grid = _Grid(profile, material, speed, n)
-        steps = max_outer if good is None else min(max_outer, MAX_OUTER_AFTER_CONVERGED)
-        elastic = (profile, Prony(material.J0))
-        # the coarser grid is handed over in a list that _solve_one empties, so that it is
-        # freed once it has given its start (memory at large N)
-        start, best, last, res = [best], None, None, None
-        if nodes is not None:
-            good = None  # a fixed mesh answers on its own grid or not at all
-        # nested=False: first from the full-contact pressure clipped at zero, with few Krylov
-        # steps each (where the operator is far from normal, a stiff material at low speed,
-        # they stagnate from there); then, as any grid that fails, from the elastic contact
-        direct = not nested and START_NODES < n <= MAX_NODES_RETRY
-        if direct:
-            res = _solve_one(grid, load, sep, start, tol, min(steps, COLD_DIRECT_STEPS),
-                             restart, min(max_inner, COLD_DIRECT_INNER), widen=False)
-        else:
-            res = _solve_one(grid, load, sep, start, tol, steps, restart, max_inner,
-                             elastic=elastic)
-        if res["status"] != CONVERGED and (levels[:-1] or direct) and n <= MAX_NODES_RETRY:
-            # the coarser contact can be a poor start where the finer grid first resolves a
-            # memory length; try once more from the elastic contact on this grid (not on the
-            # largest grids, where a failing retry costs minutes)
-            retry = _solve_one(grid, load, sep, [None], tol,
-                               max_outer if n <= MAX_NODES_FULL_RETRY else steps, restart,
-                               max_inner, elastic=elastic)
-            if retry["status"] == CONVERGED or good is None:
-                res = retry
-        if res["status"] != CONVERGED and not levels and harmonic != elastic:
-            # the first grid failed from the relaxed contact: try from the elastic contact with
-            # the compliance |J*| of the first harmonic at this speed, near the glassy one at
-            # high speed (from the relaxed contact a stiff material at high speed shrinks its
-            # contact by one panel per active-set step and runs out of steps on every grid).
-            # Only there: on a finer grid the coarser contact is the better start
-            retry = _solve_one(grid, load, sep, [None], tol, max_outer, restart, max_inner,
-                               elastic=harmonic)
-            if retry["status"] == CONVERGED:
-                res = retry
-        levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
-        last = (res, grid)
-        # an unconverged grid still gives the next one a better start than none
-        best = (res, grid)
-        if res["status"] != CONVERGED:
-            failed += 1
-            if nodes is None and failed >= (2 if scalars else MAX_FAILED_FROM_SCRATCH):
-                # two finer grids in a row failed after a converged one (or the first few
-                # grids all failed): refining further only costs more, each failed grid
-                # running all its active-set steps
-                reason = (f"the solve did not converge on N={levels[-failed][0]} … N={n} "
-                          f"({res['message']})")
-                break
-            continue
-        failed = 0
-        good = (res, grid)
-        scalars.append((n, _level_scalars(res, grid, profile, material, speed, amp)))
-        estimate, reason, note = _estimate(scalars, material, speed)
-        if scalars[-1][1].get("use_law"):  # the estimate chose the first-order memory law
-            res["friction"] = res["friction_law"]
-        if nodes is None and reason is None and _met(estimate, scalars[-1][1], rtol):
-            reached = n
+        return sizes
+    sizes = []
+    n = START_NODES
+    while n <= p.max_nodes:
+        sizes.append(n)
+        n *= 2
+    return sizes
+
+
+def _refine(p: _Problem) -> BemResult:
+    """Solve the grids of `_sizes` in turn until one stops the sequence; the contact window's
+    answer where one was given, else `_grids_result`."""
+    run = _Run()
+    elastic = (p.profile, Prony(p.material.J0))
+    harmonic = (p.profile, Prony(abs(complex(p.material.jstar([1.0], p.speed)[0]))))
+    for n in _sizes(p):
+        answer = _level(p, run, n, elastic, harmonic)
+        if answer is not None:
+            return answer
+        if run.stopped:
             break
-        if nodes is None and window is None and _window_wanted(load, profile, scalars[-1][1]):
-            window = _window_refine(res, grid, profile, material, speed, load, rtol, tol,
-                                    max_outer, restart, max_inner)
-            if window["reached"]:
-                wres, wgrid = window["res"], window["grid"]
-                answer = build_result(wres, wgrid, profile, material, speed, amp, load,
-                                      levels + window["levels"], asked=asked, control=control,
-                                      error_estimate=window["estimate"], rtol=rtol,
-                                      extra_diagnostics={"window": window["summary"]})
-                if answer.success:
-                    return _announced(answer)
-                window["summary"]["outcome"] = answer.message
-            # the window gave no answer: the periodic grids go on as without it
-            window["res"] = window["grid"] = None  # memory
-    res, grid = last
-    if nodes is None and reached is None and good is not None:
-        # the finest converged grid, flagged: its estimate did not meet the target
-        res, grid = good
-        res = dict(res)
-        res["status"] = STATUS_TARGET
-        shown = "no estimate" if estimate is None else "estimated errors " + ", ".join(
-            f"{k}={v:.2e}" for k, v in estimate.items() if v is not None)
-        stop = "max_nodes" if levels[-1][0] == max_nodes else f"refinement stopped at N={levels[-1][0]}"
-        res["message"] = (f"accuracy target rtol={rtol:g} not reached (finest converged grid "
-                          f"N={grid.n}, {stop}): {reason + '; ' if reason else ''}{shown}")
-    if nodes is not None and reason is not None:
-        estimate = None  # the grids below a fixed one do not resolve the contact: no estimate
-    shown_note = "; ".join(t for t in (reason, note) if t)
+    return _grids_result(p, run)
+
+
+def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | None:
+    """Solve and measure the grid of N = n panels into ``run``: its estimate, whether the
+    sequence stops there (the target met, or too many grids failed), and a contact window
+    where one is wanted (returns the window's answer, if it gave one)."""
+    grid = _Grid(p.profile, p.material, p.speed, n)
+    res = _solve_level(p, run, grid, elastic, harmonic)
+    run.levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
+    # an unconverged grid still gives the next one a better start than none
+    run.last = run.best = (res, grid)
+    if res["status"] != CONVERGED:
+        run.failed += 1
+        if p.nodes is None and run.failed >= (2 if run.scalars else MAX_FAILED_FROM_SCRATCH):
+            # two finer grids in a row failed after a converged one (or the first few
+            # grids all failed): refining further only costs more, each failed grid
+            # running all its active-set steps
+            run.reason = (f"the solve did not converge on N={run.levels[-run.failed][0]} … "
+                          f"N={n} ({res['message']})")
+            run.stopped = True
+        return None
+    run.failed = 0
+    run.good = (res, grid)
+    values = _level_scalars(res, grid, p.profile, p.material, p.speed, p.amp)
+    run.scalars.append((n, values))
+    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed)
+    if values.get("use_law"):  # the estimate chose the first-order memory law
+        res["friction"] = res["friction_law"]
+    if p.nodes is None and run.reason is None and _met(run.estimate, values, p.rtol):
+        run.reached = n
+        run.stopped = True
+        return None
+    if p.nodes is None and run.window is None and _window_wanted(p.load, p.profile, values):
+        return _try_window(p, run, res, grid)
+    return None
+
+
+def _solve_level(p: _Problem, run: _Run, grid, elastic, harmonic) -> dict:
+    """One grid of the sequence with its retries: from the coarser grid's contact (nested=False:
+    from the full-contact pressure clipped at zero); should that fail, from the elastic contact
+    ``elastic`` (the first grid: then from ``harmonic``'s, the elastic contact with the first
+    harmonic's |J*|).  Returns `_solve_one`'s state."""
+    n = grid.n
+    steps = p.max_outer if run.good is None else min(p.max_outer, MAX_OUTER_AFTER_CONVERGED)
+    # the coarser grid is handed over in a list that _solve_one empties, so that it is
+    # freed once it has given its start (memory at large N)
+    start, run.best, run.last = [run.best], None, None
+    if p.nodes is not None:
+        run.good = None  # a fixed mesh answers on its own grid or not at all
+    # nested=False: first from the full-contact pressure clipped at zero, with few Krylov
+    # steps each (where the operator is far from normal, a stiff material at low speed,
+    # they stagnate from there); then, as any grid that fails, from the elastic contact
+    direct = not p.nested and START_NODES < n <= MAX_NODES_RETRY
+    if direct:
+        res = _solve_one(grid, p.load, p.sep, start, p.tol, min(steps, COLD_DIRECT_STEPS),
+                         p.restart, min(p.max_inner, COLD_DIRECT_INNER), widen=False)
+    else:
+        res = _solve_one(grid, p.load, p.sep, start, p.tol, steps, p.restart, p.max_inner,
+                         elastic=elastic)
+    if res["status"] != CONVERGED and (run.levels[:-1] or direct) and n <= MAX_NODES_RETRY:
+        # the coarser contact can be a poor start where the finer grid first resolves a
+        # memory length; try once more from the elastic contact on this grid (not on the
+        # largest grids, where a failing retry costs minutes)
+        retry = _solve_one(grid, p.load, p.sep, [None], p.tol,
+                           p.max_outer if n <= MAX_NODES_FULL_RETRY else steps, p.restart,
+                           p.max_inner, elastic=elastic)
+        if retry["status"] == CONVERGED or run.good is None:
+            res = retry
+    if res["status"] != CONVERGED and not run.levels and harmonic != elastic:
+        # the first grid failed from the relaxed contact: try from the elastic contact with
+        # the compliance |J*| of the first harmonic at this speed, near the glassy one at
+        # high speed (from the relaxed contact a stiff material at high speed shrinks its
+        # contact by one panel per active-set step and runs out of steps on every grid).
+        # Only there: on a finer grid the coarser contact is the better start
+        retry = _solve_one(grid, p.load, p.sep, [None], p.tol, p.max_outer, p.restart,
+                           p.max_inner, elastic=harmonic)
+        if retry["status"] == CONVERGED:
+            res = retry
+    return res
+
+
+def _try_window(p: _Problem, run: _Run, res, grid) -> BemResult | None:
+    """Hand the single narrow patch of the converged grid (res, grid) over to a contact window
+    (:mod:`bem._window`): its answer when it met the target and passed the validity gate, else
+    None (the periodic grids go on as without it; ``run.window`` says what it gave)."""
+    window = run.window = _window_refine(res, grid, p.profile, p.material, p.speed, p.load,
+                                         p.rtol, p.tol, p.max_outer, p.restart, p.max_inner)
+    if window["reached"]:
+        answer = build_result(window["res"], window["grid"], p.profile, p.material, p.speed,
+                              p.amp, p.load, run.levels + window["levels"], asked=p.asked,
+                              control=p.control, error_estimate=window["estimate"],
+                              rtol=p.rtol, extra_diagnostics={"window": window["summary"]})
+        if answer.success:
+            return answer
+        window["summary"]["outcome"] = answer.message
+    window["res"] = window["grid"] = None  # memory
+    return None
+
+
+# --------------------------------------------------------------------------
+# The answer of the periodic grids
+# --------------------------------------------------------------------------
+def _grids_result(p: _Problem, run: _Run) -> BemResult:
+    """The result of the periodic grids: the last grid's (a fixed mesh's, or the one that met
+    the target); on an adaptive mesh that did not meet it, the finest converged grid's, flagged
+    (`_short_of_target`).  A fixed mesh whose coarser grids do not support an estimate has
+    none."""
+    res, grid = run.last
+    if p.nodes is None and run.reached is None and run.good is not None:
+        res, grid = _short_of_target(p, run)
+    # the grids below a fixed one do not resolve the contact: no estimate
+    estimate = None if p.nodes is not None and run.reason is not None else run.estimate
+    shown_note = "; ".join(t for t in (run.reason, run.note) if t)
     extra = {"estimate_note": shown_note} if shown_note else {}
-    if window is not None:
-        extra["window"] = window["summary"]
-    return _announced(build_result(res, grid, profile, material, speed, amp, load, levels,
-                                   asked=asked, control=control, error_estimate=estimate,
-                                   rtol=rtol if nodes is None else None,
-                                   extra_diagnostics=extra or None))
+    if run.window is not None:
+        extra["window"] = run.window["summary"]
+    return build_result(res, grid, p.profile, p.material, p.speed, p.amp, p.load, run.levels,
+                        asked=p.asked, control=p.control, error_estimate=estimate,
+                        rtol=p.rtol, extra_diagnostics=extra or None)
+
+
+def _short_of_target(p: _Problem, run: _Run):
+    """(res, grid) of the finest converged grid, its status STATUS_TARGET and its message the
+    target, where the refinement stopped, why, and the estimate reached."""
+    res, grid = run.good
+    res = dict(res)
+    res["status"] = STATUS_TARGET
+    shown = "no estimate" if run.estimate is None else "estimated errors " + ", ".join(
+        f"{k}={v:.2e}" for k, v in run.estimate.items() if v is not None)
+    top = run.levels[-1][0]
+    stop = "max_nodes" if top == p.max_nodes else f"refinement stopped at N={top}"
+    reason = run.reason
+    res["message"] = (f"accuracy target rtol={p.rtol:g} not reached (finest converged grid "
+                      f"N={grid.n}, {stop}): {reason + '; ' if reason else ''}{shown}")
+    return res, grid
 
 
 def _announced(result):
