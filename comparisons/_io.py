@@ -1,13 +1,17 @@
 """Files written so that an interrupted run never leaves half of one: the one atomic writer of
 text (UTF-8, '\\n' line ends, whatever the locale); the checks, before any work, that an output
-file or folder can be written; the reader of input files' bytes; one line on standard error."""
+file or folder can be written; the reader of input files' bytes; one line on standard error;
+the reader of a CSV's numeric columns."""
 from __future__ import annotations
 
+import csv
 import os
 import secrets
 import stat
 import sys
 from pathlib import Path
+
+import numpy as np
 
 from ._errors import BadInput, InputError
 
@@ -128,3 +132,13 @@ def _kind(mode):
     if stat.S_ISSOCK(mode):
         return "a socket"
     return "not a regular file"
+
+
+def read_columns(path) -> dict:
+    """The columns of a UTF-8 CSV of numbers (``#`` lines skipped, then a header row): name →
+    float array (the suite's fields files, written by `comparisons.suite.write_fields`)."""
+    with open(path, encoding="utf-8") as fh:
+        rows = [r for r in csv.reader(line for line in fh if not line.startswith("#"))]
+    head = rows[0]
+    data = np.array(rows[1:], dtype=float)
+    return {h: data[:, i] for i, h in enumerate(head)}

@@ -45,6 +45,7 @@ import numpy as np
 
 from ._errors import BadInput
 from ._io import check_output_dir, stderr, write_text
+from .plots import mastercurve as figure
 
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
 DEFAULT_RTOL = 1e-3
@@ -315,8 +316,6 @@ def _append(path, row):
         os.fsync(fh.fileno())
 
 
-
-
 def _json_safe(v):
     if isinstance(v, float) and not math.isfinite(v):
         return None
@@ -325,67 +324,6 @@ def _json_safe(v):
     if isinstance(v, (list, tuple)):
         return [_json_safe(x) for x in v]
     return v
-
-
-def plot(table, *, axes=None, title=None):
-    """μ against V (one curve per temperature) and against the reduced speed a_T V.
-
-    Parameters
-    ----------
-    table : FrictionMasterCurve
-    axes : (Axes, Axes), optional
-        Where to draw; a new figure when None.
-
-    Returns
-    -------
-    (ax_speed, ax_reduced)
-    """
-    if axes is None:
-        import matplotlib
-        matplotlib.use("Agg")
-        import matplotlib.pyplot as plt
-        _, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), sharey=True)
-    ax, axr = axes
-    temps = list(dict.fromkeys(table.temperature.tolist()))
-    for i, T in enumerate(temps):
-        sel = (table.temperature == T) & table.success
-        color = f"C{i % 10}"
-        for a, x in ((ax, table.speed), (axr, table.reduced_speed)):
-            a.plot(x[sel], table.mu[sel], "-", color=color, lw=1.2, label=f"T = {T:g}")
-            inside = sel & ~table.extrapolated
-            out = sel & table.extrapolated
-            a.plot(x[inside], table.mu[inside], "o", color=color, ms=3.5)
-            a.plot(x[out], table.mu[out], "o", color=color, ms=4.0, mfc="none")
-    for a, label in ((ax, "V (m/s)"), (axr, "a_T V (m/s), the speed at T_ref")):
-        a.set_xscale("log")
-        a.set_xlabel(label)
-        a.grid(True, which="both", alpha=0.25)
-    ax.set_ylabel("μ = τf/p∞")
-    ax.legend(fontsize=7, title="hollow: modulus extrapolated", title_fontsize=7)
-    if title is None:
-        p = table.parameters
-        m = p["material"]
-        fit = m.get("fit") or {}
-        title = (f"{os.path.basename(m.get('path') or 'material')} ({m['form']}"
-                 + (f", fit max residual {100 * fit['max_residual']:.2g} %" if fit else "")
-                 + f"); p∞ = {p['mean_pressure']:g} Pa, λ = {p['wavelength']:g} m, "
-                 f"h = {p['amplitude']:g} m, ν = {p['nu']:g}; "
-                 + (f"N = {p['nodes']}" if p["nodes"] else f"rtol = {p['rtol']:g}"))
-    ax.figure.suptitle(title, fontsize=8)
-    return ax, axr
-
-
-def write_figure(path_png, table):
-    """`plot` written to ``path_png`` (Agg, 110 dpi)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), sharey=True)
-    plot(table, axes=axes)
-    fig.tight_layout()
-    fig.savefig(path_png, dpi=110)
-    plt.close(fig)
-    return path_png
 
 
 # ------------------------------------------------------------------------------ into a folder
@@ -461,7 +399,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
     write_text(os.path.join(out, "mastercurve.json"),
                   json.dumps(_json_safe(doc), indent=1, allow_nan=False) + "\n")
     if table.success.any():
-        write_figure(os.path.join(out, "mastercurve.png"), table)
+        figure.write_figure(os.path.join(out, "mastercurve.png"), table)
     stderr(f"mastercurve: {total - failed}/{total} points in {time.monotonic() - t0:.1f} s; "
            f"wrote {csv_path}, mastercurve.json" + (", mastercurve.png"
                                                     if table.success.any() else ""))

@@ -1,11 +1,11 @@
-"""The material figure's numbers (comparisons/_figures.py): E*(ω) = 1/J*(ω) of a Prony creep
-function against its limits, the standard linear solid's closed form and its loss peak."""
+"""The material figure's numbers (comparisons/plots/materials.py): E*(ω) = 1/J*(ω) of a Prony
+creep function against its limits, the standard linear solid's closed form and its loss peak."""
 import math
 
 import numpy as np
 import pytest
 
-from comparisons import _figures
+from comparisons.plots import materials as _figures
 
 from conftest import ROUNDOFF
 

@@ -524,7 +524,7 @@ def test_the_modulus_unit_is_read_and_turned_into_pascals(tmp_path):
 
 # ----------------------------------------------------------------- the fit figure; independence
 def test_fit_figure_writes_a_png(tmp_path):
-    from comparisons import _material_plots
+    from comparisons.plots import materials as _material_plots
     c = read_dma(SBR, frequency_unit="Hz")
     m = fit_prony(c)
     out = _material_plots.dma_fit_figure(tmp_path / "fit.png", c, m)

@@ -279,8 +279,10 @@ def test_table_and_figure(tmp_path):
     import matplotlib
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
+
+    from comparisons.plots.peers import plot_dt_convergence
     fig, ax = plt.subplots()
-    assert peer.plot_dt_convergence(ax, data) is ax
+    assert plot_dt_convergence(ax, data) is ax
     fig.savefig(tmp_path / "dt.png")
     plt.close(fig)
     assert (tmp_path / "dt.png").stat().st_size > 0

@@ -7,6 +7,7 @@ import pytest
 
 import analytic
 from comparisons import _html, cli, suite, verify
+from comparisons.verify import _compare, _edges, _quantities, _report
 
 CASE = "sls-partial-v1"
 
@@ -256,7 +257,8 @@ def test_the_measured_position_resolution_holds():
     kw = {k: point[k] for k in ("load", "speed", "ratio", "hk")}
     f = analytic.fourier_solve(nodes=n, shifts=1, **kw)
     fields = {k: np.asarray(getattr(f, k)) for k in ("x_over_lambda", "pressure", "gap")}
-    edges = verify._match(ref.patches, verify.scalars_from_fields(fields, ref.shape)[1])
+    edges = _quantities.edge_differences(ref.patches,
+                                         verify.scalars_from_fields(fields, ref.shape)[1])
     assert max(max(abs(a), abs(b)) for a, b in edges) * n == pytest.approx(0.047, abs=0.002)
     point, case = verify.point_from_case("sls-light-v1")
     ka = verify.reference_for(point, case).scalars["ka"][0]
@@ -282,14 +284,15 @@ def test_a_relaxation_layer_is_left_out_of_the_plain_edge_fit(monkeypatch):
         patch = verify.scalars_from_fields(fields, ref.shape)[1][0]
         return abs(patch["leading_edge"] - ref.patches[0]["leading_edge"]) * n
     assert lead_error() < 0.005
-    monkeypatch.setattr(verify, "EDGE_HOLDS", np.inf)  # every side in the plain fits
+    monkeypatch.setattr(_edges, "EDGE_HOLDS", np.inf)  # every side in the plain fits
     assert lead_error() > 0.5
 
 
 def test_verify_imports_no_private_name_of_bem():
     import ast
-    import inspect
-    tree = ast.parse(inspect.getsource(verify))
+    from pathlib import Path
+    tree = ast.parse("\n".join(p.read_text(encoding="utf-8")  # every module of the package
+                               for p in sorted(Path(verify.__file__).parent.glob("*.py"))))
     for node in ast.walk(tree):
         if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("bem"):
             assert not node.module.startswith("bem._"), node.module
@@ -434,13 +437,13 @@ def test_the_grid_limits_a_check_only_within_what_it_explains():
     """A difference the derivation floor explains is noted as the grid's limit; one far beyond
     it (1.5e-2 at a floor of 2e-4) is not."""
     tol = (1e-4, "test")
-    inside = verify._row("mu", 1.0, 1.0, 2.5e-4, "relative", tol, 0.0, 2e-4)
+    inside = _compare._row("mu", 1.0, 1.0, 2.5e-4, "relative", tol, 0.0, 2e-4)
     assert inside["passed"] and inside["note"].startswith("the grid limits this check")
-    beyond = verify._row("mu", 1.0, 1.0, 1.5e-2, "relative", tol, 0.0, 2e-4)
+    beyond = _compare._row("mu", 1.0, 1.0, 1.5e-2, "relative", tol, 0.0, 2e-4)
     assert not beyond["passed"] and "grid limits" not in beyond["note"]
     assert beyond["note"] == ("not explained by the grid: the derivation on this grid errs by "
                               "only 2.0e-04")
-    assert verify._row("mu", 1.0, 1.0, 5e-5, "relative", tol, 0.0, 0.0)["note"] == ""
+    assert _compare._row("mu", 1.0, 1.0, 5e-5, "relative", tol, 0.0, 0.0)["note"] == ""
 
 
 @pytest.mark.slow
@@ -662,7 +665,7 @@ def test_an_unwritable_out_is_refused_up_front_like_point_and_sweep(tmp_path, ca
 def test_a_report_that_cannot_be_written_is_one_line_status_1(tmp_path, capsys, monkeypatch):
     def refuse(*a, **k):
         raise OSError(28, "No space left on device")
-    monkeypatch.setattr(verify, "write_text", refuse)
+    monkeypatch.setattr(_report, "write_text", refuse)
     path = tmp_path / "s.jsonl"
     path.write_text('{"mu": 0.3}\n', encoding="utf-8")
     rc, out, err = _run(capsys, "--case", CASE, "--scalars", str(path), "--out",

@@ -13,7 +13,7 @@
     python -m comparisons report [--out DIR] [--quick] [--resume] [--workers W | --scheduler A]
     python -m comparisons crosscheck [--nodes N ...] | --tolerances
     python -m comparisons bench [--points N] [--bem | --bem-only | --cluster | --honesty [--seed S] [--light] [--front-door] | --materials [--seed S] [--workers W] | --accepted [--seed S] [--cheap]] [--max-log2n K]
-    python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify.py)
+    python -m comparisons suite ... | verify ...   (comparisons/suite.py, comparisons/verify/)
     python -m comparisons mastercurve ...           (comparisons/mastercurve.py)
 
 Materials (--material, temperatures, SI, the speed's time): comparisons/_materials.py and

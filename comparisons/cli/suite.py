@@ -1,4 +1,5 @@
-"""``suite``: the certified benchmark suite, export it or check it (`comparisons.suite`).
+"""``suite``: the certified benchmark suite, export it or check it (`comparisons.suite`,
+`comparisons.suite_export`).
 
 Its own messages: bad input is one line without the command's prefix (exit status 2), an
 unreachable scheduler one line starting ``suite:`` (exit status 1).
@@ -37,17 +38,17 @@ def add_parser(sub):
 def run(args) -> int:
     """Exit status 0, 1 (a digit changed, a recomputation failed, the scheduler cannot be
     reached) or 2 (bad input)."""
-    from .. import _cluster, suite
+    from .. import _cluster, suite, suite_export
     try:
         if args.workers < 1:
             raise suite.SuiteError(f"--workers {args.workers} is not allowed: an integer >= 1")
         book = suite.load_suite()
         cases = suite.select(book, args.cases)
         if args.list:
-            print(suite.summary_table(cases), end="")
+            print(suite_export.summary_table(cases), end="")
             return EXIT_OK
         if args.export:
-            dirs = suite.export(args.export, args.cases, book)
+            dirs = suite_export.export(args.export, args.cases, book)
             print(f"suite: wrote {len(dirs)} cases and README.md to {args.export}",
                   file=sys.stderr)
             return EXIT_OK

@@ -71,6 +71,7 @@ from viscosine import Fields
 from viscosine._checks import bad, integer, real, series
 from viscosine._protocol import SCALAR_KEYS, Patch, _plain
 
+from ..convergence import richardson
 from ..fields import true_runs
 
 #: the Tamaas versions this adapter was verified on (its conventions are measured, not assumed)
@@ -537,11 +538,19 @@ def _change(prev, snap, h):
 #: the quantities a dt study extrapolates
 STUDY_KEYS = ("mu", "tau_f", "penetration", "ka", "ke", "ke_hat", "contact_fraction")
 
+#: the time steps of a dt study in cell crossings T/N (coarse to fine): halved twice, so that the
+#: first-order Richardson value and the size of its next term both come out
+CELLS_PER_STEP = (4, 2, 1)
+
 
 def _order(dts, values):
     """Observed order p from three (dt, value) pairs, dt decreasing: solves
     (q1 − q0)/(q2 − q1) = (dt0^p − dt1^p)/(dt1^p − dt2^p); None when the differences do not
-    shrink monotonically (no order to observe)."""
+    shrink monotonically (no order to observe).
+
+    Not `comparisons.convergence.observed_order`: this is exact for any ratios of the steps
+    (the log–log fit of differences is right only for equal ratios) and refuses a
+    non-monotone study; on halved steps the two agree to a few units in the last place."""
     (d0, d1, d2), (q0, q1, q2) = dts, values
     a, b = q1 - q0, q2 - q1
     if b == 0.0 or a / b <= 1.0:
@@ -558,11 +567,6 @@ def _order(dts, values):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if f(mid) < 0.0 else (lo, mid)
     return 0.5 * (lo + hi)
-
-
-def _richardson(dt_c, q_c, dt_f, q_f, order=1.0):
-    """q at dt → 0 from two steps, assuming q = q* + C dt^order."""
-    return q_f + (q_f - q_c) / ((dt_c / dt_f) ** order - 1.0)
 
 
 def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=False,
@@ -600,7 +604,7 @@ def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=
     v = validate(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes)
     t_cell = _TWO_PI / (v["speed"] * v["nodes"])
     if dts is None:
-        dts = (4.0 * t_cell, 2.0 * t_cell, t_cell)
+        dts = tuple(c * t_cell for c in CELLS_PER_STEP)
     allowed = "a sequence of at least two time steps > 0 (units of τ)"
     steps = sorted(series("dts", dts, allowed), reverse=True)
     if len(steps) < 2:
@@ -653,7 +657,10 @@ def _study_rows(dts, progress=None, results=None, **kw):
 
 
 def extrapolate(rows):
-    """Order, Richardson value and error estimate of every quantity (rows coarse → fine)."""
+    """Order, Richardson value and error estimate of every quantity (rows coarse → fine).
+
+    The Richardson value is `comparisons.convergence.richardson`'s step of order 1 (backward
+    Euler) with the ratio of the two finest steps."""
     dts = [r["dt"] for r in rows]
     order, rich, err = {}, {}, {}
     for k in STUDY_KEYS:
@@ -661,19 +668,14 @@ def extrapolate(rows):
         if any(x is None for x in q) or not all(r["success"] for r in rows):
             order[k] = rich[k] = err[k] = None
             continue
-        rich[k] = _richardson(dts[-2], q[-2], dts[-1], q[-1])
+        rich[k] = richardson(q[-2], q[-1], 1.0, dts[-2] / dts[-1])
         order[k] = _order(dts[-3:], q[-3:]) if len(q) >= 3 else None
         if len(q) >= 3:
-            coarser = _richardson(dts[-3], q[-3], dts[-2], q[-2])
+            coarser = richardson(q[-3], q[-2], 1.0, dts[-3] / dts[-2])
             err[k] = abs(rich[k] - coarser) / (dts[-3] / dts[-1] - 1.0)
         else:
             err[k] = None
     return {"order": order, "richardson": rich, "error": err}
-
-
-#: the time steps of a dt study in cell crossings T/N (coarse to fine): halved twice, so that the
-#: first-order Richardson value and the size of its next term both come out
-CELLS_PER_STEP = (4, 2, 1)
 
 
 @dataclass(frozen=True)
@@ -722,8 +724,8 @@ class DtExtrapolation:
             return fine
         coarse = rs[-2].fields()
         dc, df = rs[-2].dt, rs[-1].dt
-        return Fields(fine.x_over_lambda, *(_richardson(dc, np.asarray(getattr(coarse, k)), df,
-                                                        np.asarray(getattr(fine, k)))
+        return Fields(fine.x_over_lambda, *(richardson(np.asarray(getattr(coarse, k)),
+                                                       np.asarray(getattr(fine, k)), 1.0, dc / df)
                                             for k in ("pressure", "displacement", "gap")))
 
 
@@ -808,7 +810,7 @@ def friction_peak(*, load, ratio=3.0, hk=1.0):
 
 
 def third_code_table(*, load=0.15, ratio=3.0, hk=1.0, speeds=None, nodes=512,
-                     cells_per_step=(4, 2, 1), mesh_check=False, **options):
+                     cells_per_step=CELLS_PER_STEP, mesh_check=False, **options):
     """Tamaas against the semi-analytic road: μ per dt, order, Richardson μ, analytic μ.
 
     Parameters
@@ -864,10 +866,11 @@ def third_code_table(*, load=0.15, ratio=3.0, hk=1.0, speeds=None, nodes=512,
     return {"inputs": {"load": load, "ratio": ratio, "hk": hk, "nodes": nodes,
                        "cells_per_step": list(cells_per_step), **options},
             "peak_speed": peak, "peak_mu": peak_mu, "rows": rows, "summary": summary,
-            "tamaas_version": _tamaas_version()}
+            "tamaas_version": tamaas_version()}
 
 
-def _tamaas_version():
+def tamaas_version():
+    """The version of the installed tamaas (its ``__version__``); ImportError as in `solve`."""
     return str(_import_tamaas().__version__)
 
 
@@ -892,41 +895,3 @@ def format_table(data):
                      f"{', '.join(f'{m:.5f}' for m in s['mu_per_dt'])} | {order} | {rich} | "
                      f"{err} | {s['mu_analytic']:.6f} | {rd} | {s['wall_time']:.0f} s |")
     return "\n".join(lines)
-
-
-def plot_dt_convergence(ax, data):
-    """Relative error of Tamaas's μ against the semi-analytic road, against dt/T.
-
-    Parameters
-    ----------
-    ax : matplotlib Axes
-    data : dict
-        The output of `third_code_table`.
-
-    Returns
-    -------
-    ax
-        Markers: each dt; dashed: the Richardson value's error; dotted: slope 1.
-    """
-    import matplotlib
-    matplotlib.use("Agg", force=False)
-
-    for i, s in enumerate(data["summary"]):
-        colour = f"C{i}"
-        x = np.asarray(s["dt_over_period"])
-        y = np.abs(np.asarray(s["mu_per_dt"]) / s["mu_analytic"] - 1.0)
-        ax.loglog(x, y, "o-", color=colour, label=f"V/V0 = {s['speed']:.3g}")
-        if s["relative_difference"] is not None:
-            ax.axhline(abs(s["relative_difference"]), color=colour, ls="--", lw=0.8)
-    first = data["summary"][0]
-    x = np.asarray(first["dt_over_period"])
-    y0 = abs(first["mu_per_dt"][0] / first["mu_analytic"] - 1.0)
-    ax.loglog(x, 0.5 * y0 * x / x[0], ":", color="0.4", label="slope 1")
-    inp = data["inputs"]
-    ax.set_xlabel("dt / T (time step over the period transit time)")
-    ax.set_ylabel("|μ_Tamaas / μ_analytic − 1|")
-    ax.set_title(f"Tamaas (backward Euler) against the semi-analytic road\np̃∞ = "
-                 f"{inp['load']:g}, E∞/E0 = {inp['ratio']:g}, hk = {inp['hk']:g}, "
-                 f"N = {inp['nodes']}; dashed: Richardson", fontsize=9)
-    ax.legend(fontsize=8)
-    return ax

@@ -1,6 +1,7 @@
-"""Figures shared by the report, ``verify`` and the suite export (plain numbers in, an Axes out).
+"""The material figures: the complex modulus of a Prony series, and a DMA curve against its fit.
 
-The material figure: the complex modulus E*(ω) = E′ + iE″ of a Prony creep function and its loss
+The material figure (shared by the report, ``verify`` and the suite export; plain numbers in, an
+Axes out): the complex modulus E*(ω) = E′ + iE″ of a Prony creep function and its loss
 tangent against frequency.  Its inputs are the numbers of a Prony file (docs/conventions.md,
 'Input files of the boundary-element road'), not a solver object, so that plotting a material
 needs neither road.
@@ -23,6 +24,12 @@ A mode e^(ikx) of the steady sliding field is seen by the material at the freque
 J′ and J″ are sums of positive terms (J(0+) is formed once), so nothing cancels, even for
 E∞/E0 = 1e4.
 
+The DMA fit figure (`plot_dma_fit`): measured E′, E″ and tan δ against ω with the fitted Prony
+series.  Its inputs are a master curve and a relaxation-form series of
+:mod:`viscosine.materials` (the shared package, not a road), in the units of the data: angular
+frequency in rad per time unit, moduli in the file's unit.  E″ ≥ 0 (the strain lags the stress), tan δ = E″/E′.  The measured window is
+shaded: outside it the curve is the fit's extrapolation, not data.
+
 References
 ----------
 Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014: eq. (2.3) (the
@@ -37,7 +44,8 @@ import numpy as np
 
 from viscosine._checks import bad, real, reals
 
-from . import roads
+from .. import roads
+from . import pyplot, save
 
 
 def _terms(J0, terms):
@@ -164,12 +172,61 @@ def prony_numbers(path):
 def material_figure(path_png, J0, terms, *, speeds=(), speeds_label="sliding frequency kV",
                     title=None):
     """Write the material figure to ``path_png`` (Agg backend, 110 dpi)."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-    fig, ax = plt.subplots(figsize=(6.6, 4.4))
+    fig, ax = pyplot().subplots(figsize=(6.6, 4.4))
     plot_material(ax, J0, terms, speeds=speeds, speeds_label=speeds_label, title=title)
-    fig.tight_layout()
-    fig.savefig(path_png, dpi=110)
-    plt.close(fig)
-    return path_png
+    return save(fig, path_png)
+
+
+def plot_dma_fit(curve, model, *, ax=None, title=None):
+    """Data (markers) against fit (lines): E′, E″ on log axes, tan δ on a right axis.
+
+    Parameters
+    ----------
+    curve : viscosine.materials.MasterCurve
+        The data.
+    model : viscosine.materials.Maxwell
+        The series fitted to it (``fit_prony``); drawn a decade beyond the data on each side.
+    ax : matplotlib Axes, optional
+        Where E′ and E″ go (tan δ on ``ax.twinx()``); a new figure when None.
+    title : str, optional
+        Default: the data source and the fit report (terms, residuals), for provenance.
+
+    Returns
+    -------
+    ax
+    """
+    if ax is None:
+        _, ax = pyplot().subplots(figsize=(7.0, 4.6))
+    w0, w1 = curve.window
+    w = np.logspace(math.log10(w0) - 1.0, math.log10(w1) + 1.0, 600)
+    fit = model.modulus(w)
+    h = [ax.axvspan(w0, w1, color="0.93", zorder=0, label="measured window"),
+         ax.loglog(curve.omega, curve.storage, "o", color="C0", ms=3.5, mfc="none",
+                   label="E′ data")[0],
+         ax.loglog(w, fit.real, "-", color="C0", lw=1.3, label="E′ fit")[0],
+         ax.loglog(curve.omega, curve.loss, "s", color="C3", ms=3.5, mfc="none",
+                   label="E″ data")[0],
+         ax.loglog(w, fit.imag, "-", color="C3", lw=1.3, label="E″ fit")[0]]
+    ax.set_xlabel("ω (rad per time unit of the data)")
+    ax.set_ylabel("E′, E″ (modulus unit of the data)")
+    ax.grid(True, which="both", alpha=0.25)
+    tw = ax.twinx()
+    h += [tw.loglog(curve.omega, curve.tan_delta, "^", color="C2", ms=3.0, mfc="none",
+                    label="tan δ data (right)")[0],
+          tw.loglog(w, fit.imag / fit.real, "--", color="C2", lw=1.1,
+                    label="tan δ fit (right)")[0]]
+    tw.set_ylabel("tan δ", color="C2")
+    ax.legend(handles=h, fontsize=7, loc="upper left")
+    if title is None:
+        report = model.fit
+        what = report.summary() if report is not None else f"{len(model.E)} terms"
+        title = f"{curve.source or 'DMA data'}\nProny fit: {what}"
+    ax.set_title(title, fontsize=8)
+    return ax
+
+
+def dma_fit_figure(path_png, curve, model, *, title=None):
+    """Write `plot_dma_fit` to ``path_png`` (Agg backend, 110 dpi); returns the path."""
+    fig, ax = pyplot().subplots(figsize=(7.0, 4.6))
+    plot_dma_fit(curve, model, ax=ax, title=title)
+    return save(fig, path_png)

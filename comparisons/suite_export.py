@@ -1,0 +1,287 @@
+"""The benchmark suite exported as plain files, and its summary tables.
+
+    python -m comparisons suite --export DIR [--cases NAME ...]
+    python -m comparisons suite --list [--cases NAME ...]
+
+`export` writes one folder per case (``inputs.json``, ``prony.txt``, ``profile.csv``,
+``scalars.json``, ``scalars.csv``, ``fields.csv``, ``material.png`` for a Prony material and the
+original material file) and ``README.md`` and ``index.json`` for the suite, from what
+``suite.json`` certifies (:mod:`comparisons.suite`); it computes nothing.  `summary_table` is the
+table of certified digits that ``--list`` prints and the README shows.
+"""
+from __future__ import annotations
+
+import csv
+import io
+import json
+import math
+import shutil
+from pathlib import Path
+
+from . import roads as _roads
+from ._io import write_text
+from .fields import PATCH_KEYS
+from .plots.materials import prony_numbers
+from .plots.suite import material_png
+from .suite import FORM_NAMES, case_material, load_suite, reference_of, select, two_roads
+from .suite_inputs import DATA
+
+#: the files an exported case folder writes itself (a copied material file never takes one)
+EXPORT_FILES = ("inputs.json", "prony.txt", "profile.csv", "scalars.json", "scalars.csv",
+                "fields.csv", "material.png")
+
+
+def _source_name(point) -> str:
+    """The name under which an export copies a case's original material file."""
+    name = Path(point["material"]).name
+    return name if name not in EXPORT_FILES else "source-" + name
+
+
+def _prony_text(point) -> str:
+    if point.get("prony"):
+        return (DATA / point["prony"]).read_text(encoding="utf-8")
+    if point.get("material"):
+        m = case_material(point)
+        info, pr = m.info, m.prony
+        name = Path(point["material"]).name
+        copied = "copied alongside" + ("" if _source_name(point) == name
+                                       else f" as {_source_name(point)}")
+        lines = [f"# creep series converted from {name} ({copied}): a "
+                 f"{FORM_NAMES[info['form']]}, sha256 {info['sha256']}",
+                 "# converted by comparisons._materials.read (relaxation series: exactly; DMA "
+                 "curve: its Prony fit, then exactly)"]
+        if info.get("fit"):
+            f = info["fit"]
+            lines.append(f"# DMA fit: {f['per_decade']:g} relaxation times per decade, largest "
+                         f"relative residual {f['max_residual']:.3g} (bound {f['bound']:g}), "
+                         f"measured window {f['window'][0]:.4g}..{f['window'][1]:.4g} rad/s"
+                         + (" (shifted to the temperature below)"
+                            if info.get("temperature") is not None else ""))
+        if info.get("temperature") is not None:
+            sh = info["shift"]
+            lines.append(f"# at temperature {info['temperature']:g} (WLF C1 = {sh['C1']:g}, "
+                         f"C2 = {sh['C2']:g}, T_ref = {sh['T_ref']:g}: log10 a_T = "
+                         f"{info['log10_aT']:.6g}; every time multiplied by a_T)")
+        lines.append(f"# J(t) = J0 - sum_i J_i exp(-t/tau_i), {len(pr.J)} terms; compliances in "
+                     f"1/E_ref, E_ref = {info['E_ref_is']} = {info['E_ref']!r}; retardation "
+                     f"(creep) times in tau_ref, tau_ref = {info['tau_ref_is']}")
+        lines.append(f"J0 {float(pr.J0)!r}")
+        lines += [f"{float(j)!r} {float(t)!r}" for j, t in zip(pr.J, pr.tau)]
+        return "\n".join(lines) + "\n"
+    r = float(point.get("ratio", 3.0))
+    return ("# standard linear solid, E_inf/E0 = %r: J(t) = J0 - J1 exp(-t/tau)\n"
+            "# compliances in 1/E0, times in the creep time tau\n"
+            "J0 1.0\n%r 1.0\n" % (r, 1.0 - 1.0 / r))
+
+
+def _profile_text(point) -> str:
+    if point.get("profile"):
+        return (DATA / point["profile"]).read_text(encoding="utf-8")
+    hk = float(point.get("hk", 1.0))
+    m = 64  # the trigonometric interpolant of 64 samples is exactly hk cos(2 pi x)
+    lines = [f"# sinusoid k*y = {hk!r} cos(2 pi x/lambda), sampled at x/lambda = j/{m} - 1/2",
+             "x_over_lambda,ky"]
+    lines += [f"{j / m - 0.5!r},{hk * math.cos(2 * math.pi * (j / m - 0.5))!r}" for j in range(m)]
+    return "\n".join(lines) + "\n"
+
+
+def _inputs(case, suite) -> dict:
+    p = case["point"]
+    d = {"name": case["name"], "title": case["title"], "suite_version": suite["version"],
+         "control": "load" if p.get("load") is not None else "penetration"}
+    d.update(_roads.point_controls(p))
+    d["speed"] = float(p["speed"])
+    if p.get("profile"):
+        text = (DATA / p["profile"]).read_text(encoding="utf-8")
+        about = " ".join(ln.lstrip("# ").strip() for ln in text.splitlines() if ln.startswith("#"))
+        d["profile"] = {"kind": "samples (trigonometric interpolant)", "file": "profile.csv",
+                        "description": about}
+    else:
+        d["profile"] = {"kind": "sinusoid", "hk": float(p.get("hk", 1.0)), "file": "profile.csv"}
+    units = ("load = p (1 - nu^2)/E_ref; speed = V tau_ref k; lengths in wavelengths "
+             "(x/lambda, crest at 0, sliding toward +x), heights k*y; compliances in "
+             "1/E_ref, times in tau_ref")
+    if p.get("prony"):
+        d["material"] = {"kind": "prony", "file": "prony.txt", "figure": "material.png"}
+    elif p.get("material"):
+        info = case_material(p).info
+        d["material"] = {"kind": FORM_NAMES[info["form"]],
+                         "file": "prony.txt",
+                         "file_is": "the creep series the BEM solves, converted from source_file",
+                         "source_file": _source_name(p), "source_sha256": info["sha256"],
+                         "E_ref": info["E_ref"], "E_ref_is": info["E_ref_is"],
+                         "tau_ref_is": info["tau_ref_is"],
+                         "terms": info["terms"], "temperature": info["temperature"],
+                         "shift": info["shift"], "log10_aT": info["log10_aT"],
+                         "fit": info["fit"], "figure": "material.png"}
+        units += f" (E_ref = {info['E_ref_is']}; tau_ref = {info['tau_ref_is']})"
+    else:
+        d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
+                         "file": "prony.txt"}
+    if not p.get("material"):
+        units += " (E_ref = E0, tau_ref = tau: the creep time)"
+    d["units"] = units
+    if two_roads(p):
+        d["reference_road"] = "semi-analytic (two roads agree)"
+    elif reference_of(case) == "fourier":
+        d["reference_road"] = ("BEM (convergence study), checked against the independent "
+                               "Fourier-collocation reference analytic.fourier_solve (the digits "
+                               "both agree on)")
+    else:
+        d["reference_road"] = "BEM (convergence study)"
+    return d
+
+
+def _scalar_rows(cert):
+    rows = []
+    for k, r in cert["scalars"].items():
+        rows.append(["", k, r["value"], r["digits"], r["rounded"], r["error"], r["method"]])
+    for k, v in cert["exact"].items():
+        rows.append(["", k, v, "exact", "" if v is None else repr(v), 0.0, "exact"])
+    for j, p in enumerate(cert["patches"], 1):
+        for k in PATCH_KEYS:
+            r = p[k]
+            rows.append([j, k, r["value"], r["digits"], r["rounded"], r["error"], r["method"]])
+    return rows
+
+
+def export(folder, names=(), suite=None):
+    """Write the suite as plain CSV/JSON, one folder per case plus ``README.md`` and ``index.json``.
+
+    Returns the list of case folders written.
+    """
+    suite = suite or load_suite()
+    cases = select(suite, names)
+    folder = Path(folder)
+    written = []
+    for case in cases:
+        d = folder / case["name"]
+        cert = case["certified"]
+        write_text(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
+                                                    ensure_ascii=False) + "\n")
+        write_text(d / "prony.txt", _prony_text(case["point"]))
+        if case["point"].get("material"):  # the file as the user would hold it
+            shutil.copyfile(DATA / case["point"]["material"], d / _source_name(case["point"]))
+        if case["point"].get("prony") or case["point"].get("material"):
+            _material_png(d / "material.png", case)
+        write_text(d / "profile.csv", _profile_text(case["point"]))
+        sc = {"case": case["name"], "status": cert["status"], "notes": cert["notes"],
+              "method": cert["method"],
+              "scalars": {k: {kk: r[kk] for kk in ("value", "digits", "rounded", "error", "method")}
+                          for k, r in cert["scalars"].items()},
+              "exact": cert["exact"],
+              "patches": [{k: {kk: p[k][kk] for kk in ("value", "digits", "rounded", "error")}
+                           for k in PATCH_KEYS} for p in cert["patches"]],
+              "fields": {"file": "fields.csv", "grid": cert["fields"]["grid"],
+                         "max_error": cert["fields"]["max_error"]}}
+        write_text(d / "scalars.json", json.dumps(sc, indent=1, ensure_ascii=False) + "\n")
+        buf = io.StringIO()
+        w = csv.writer(buf, lineterminator="\n")
+        w.writerow(["patch", "quantity", "value", "certified_digits", "rounded", "error_bound",
+                    "method"])
+        for row in _scalar_rows(cert):
+            w.writerow(["" if v is None else (repr(v) if isinstance(v, float) else v) for v in row])
+        write_text(d / "scalars.csv", buf.getvalue())
+        shutil.copyfile(DATA / cert["fields"]["file"], d / "fields.csv")
+        written.append(d)
+    index = {"suite_version": suite["version"], "description": suite["description"],
+             "rule": suite["rule"], "cases": [c["name"] for c in cases]}
+    write_text(folder / "index.json", json.dumps(index, indent=1, ensure_ascii=False) + "\n")
+    write_text(folder / "README.md", _index_readme(suite, cases))
+    return written
+
+
+def _material_png(path, case):
+    """The material figure of a case with a Prony material: its creep series as the BEM solves
+    it, drawn by `comparisons.plots.suite.material_png`."""
+    point = case["point"]
+    if point.get("prony"):
+        j0, terms = prony_numbers(DATA / point["prony"])
+        source = Path(point["prony"]).name
+    else:  # the creep series converted from the material file, as the BEM solves it
+        pr = case_material(point).prony
+        j0, terms = float(pr.J0), [(float(j), float(t)) for j, t in zip(pr.J, pr.tau)]
+        source = Path(point["material"]).name + (f" at T = {point['temperature']:g}"
+                                                  if point.get("temperature") is not None else "")
+    material_png(path, case["name"], source, j0, terms, float(point["speed"]))
+
+
+def summary_table(cases) -> str:
+    """The Markdown table of `summary_rows` (`suite --list`, the exported README)."""
+    from ._html import table
+    return table(["case", "title", "μ digits", "Δ/h digits", "certified by"], summary_rows(cases))
+
+
+def summary_rows(cases):
+    """(case, title, μ digits, Δ/h or load digits, how) for each case."""
+    rows = []
+    for c in cases:
+        cert = c["certified"]
+        sc = cert["scalars"]
+        if "penetration" in sc:
+            second = str(sc["penetration"]["digits"])
+        elif "load" in sc:  # penetration control: Δ/h is the input, the load is certified
+            second = f"input ({sc['load']['digits']} in the load)"
+        else:
+            second = "exact (full contact)"
+        rows.append([c["name"], c["title"], str(sc["mu"]["digits"]), second,
+                     cert["method"] + ("" if cert["status"] == "complete"
+                                       else f" — {cert['status']}")])
+    return rows
+
+
+def _index_readme(suite, cases) -> str:
+    out = [f"# viscosine benchmark suite, version {suite['version']}", "",
+           suite["description"], "",
+           "Each folder is one case:", "",
+           "- `inputs.json`: the operating point (load or penetration control, speed) and what "
+           "the indenter and the material are, in the units stated there;",
+           "- `profile.csv`: the indenter, k·y at x/λ = j/M − 1/2 (columns `x_over_lambda,ky`; "
+           "the profile is the trigonometric interpolant of the samples);",
+           "- `prony.txt`: the creep function, a line `J0 value` then one line `J_i tau_i` per "
+           "term, J(t) = J0 − Σ J_i exp(−t/τ_i), compliances in 1/E_ref, retardation (creep) "
+           "times in τ_ref; a case whose material is a relaxation series or a DMA master curve "
+           "(`inputs.json` says which, at which temperature) gets the creep series it was "
+           "converted to, its header naming the original file (copied alongside) and its "
+           "SHA-256;",
+           "- `scalars.json` and `scalars.csv`: every certified value with its certified "
+           "significant digits, the value rounded to them, and the error bound behind them;",
+           "- `fields.csv`: pressure, displacement and gap on a stated grid, each with its "
+           "certified absolute error (`<column>_err`);",
+           "- `material.png` (cases with a Prony material): the storage and loss moduli E′, E″ "
+           "and the loss tangent of `prony.txt` against frequency, with the case's sliding "
+           "frequency ω = kV (ωτ_ref = V/V0) marked.", "",
+           "Quantities (keys of `scalars.json`): `mu` (μ = τf/p∞), `tau_f` (τf(1 − ν²)/E0), "
+           "`penetration` (Δ/h), `separation` (s/h = 1 − Δ/h, the mean gap), `load` (p̃∞, "
+           "certified under penetration control), `contact_fraction` (2a/λ), `ka`, `ke`, "
+           "`ke_hat` (one patch or full contact); with several patches, per patch: `summit` "
+           "(x/λ of the highest profile point in the patch), `trailing_edge`, `leading_edge` "
+           "(x/λ), `load` (its share of p̃∞), `ka`, `ke`, `ke_hat`. `exact` lists what holds by "
+           "construction (full contact: ka = π, Δ/h = 1, s = 0; the input Δ/h).", "",
+           "Units and signs: pressure σ(1 − ν²)/E0 (positive in compression), displacement v/h "
+           "(positive into the body, from the mean line of the deformed surface), gap/h; "
+           "x/λ with the crest at 0 and the indenter sliding toward +x; μ = τf/p∞ with τf "
+           "positive when it resists; ka, ke, kê in radians (per patch measured from the "
+           "patch's summit).", "",
+           "## How the digits are certified", "", suite["rule"], "",
+           "## Cases", "",
+           summary_table(cases),
+           *_materials_list(cases),
+           "Cite: Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the "
+           "problem and the semi-analytic method).", ""]
+    return "\n".join(out)
+
+
+def _materials_list(cases):
+    """README lines linking the material figure of each Prony case (none without one)."""
+    prony = [c for c in cases if c["point"].get("prony") or c["point"].get("material")]
+    if not prony:
+        return []
+    return (["Prony materials (creep functions, creep times; `docs/conventions.md` of "
+             "viscosine, 'Creep times, not relaxation times'):", ""]
+            + [f"- {c['name']}: [{c['name']}/material.png]({c['name']}/material.png) "
+               f"({Path(c['point'].get('prony') or c['point']['material']).name}"
+               + (f" at T = {c['point']['temperature']:g}"
+                  if c["point"].get("temperature") is not None else "")
+               + f", V/V0 = {c['point']['speed']:g})"
+               for c in prony] + [""])

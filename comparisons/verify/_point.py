@@ -1,0 +1,148 @@
+"""The operating point of a verification: from a suite case, a dict or the command's options,
+checked as the two roads accept it (conventions units; SI options converted)."""
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+from .. import roads
+from .. import suite as _suite
+from ._inputs import BadInput, bad_input, read_text
+
+
+def point_from_case(name):
+    """(operating point with absolute file paths, suite case) of a suite case."""
+    try:
+        case = _suite.get_case(name)
+    except _suite.SuiteError:
+        import difflib
+        names = _suite.case_names()
+        near = difflib.get_close_matches(str(name), names, n=3, cutoff=0.5)
+        raise bad_input("--case", name, "not a suite case",
+                        f"one of the {len(names)} cases `python -m comparisons suite --list` "
+                        "prints" + (f" (closest: {', '.join(near)})" if near else
+                                    f", e.g. {', '.join(names[:3])}")) from None
+    point = dict(case["point"])
+    for k in ("profile", "prony", "material"):
+        if point.get(k):
+            point[k] = str(_suite.data_path(point[k]))
+    return point, case
+
+
+def check_point(point, option_prefix="--"):
+    """BadInput unless the operating point dict is valid (ranges as the two roads accept)."""
+    def num(name, test, allowed):
+        v = point.get(name)
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or not test(v):
+            raise bad_input(option_prefix + name, v, "out of range", allowed)
+        return float(v)
+    if (point.get("load") is None) == (point.get("penetration") is None):
+        raise bad_input(option_prefix + "load", point.get("load"),
+                        "give exactly one of --load and --penetration", "one of them")
+    if point.get("load") is not None:
+        num("load", lambda v: v > 0.0, "a mean pressure p̃∞ > 0")
+    else:
+        num("penetration", lambda v: 0.0 < v <= 1.0, "Δ/h in (0, 1]")
+    num("speed", lambda v: v >= 0.0, "V/V0 ≥ 0")
+    if point.get("prony"):
+        if point.get("ratio") is not None:
+            raise bad_input("--ratio", point["ratio"], "given with --prony",
+                            "one of --ratio and --prony")
+    else:
+        num("ratio", lambda v: v > 1.0, "E∞/E0 > 1")
+    if point.get("profile"):
+        if point.get("hk") is not None:
+            raise bad_input("--hk", point["hk"], "given with --profile",
+                            "one of --hk and --profile")
+    else:
+        num("hk", lambda v: v > 0.0, "hk > 0")
+    for k, reader in (("profile", roads.read_profile), ("prony", roads.read_prony)):
+        if point.get(k):
+            path = point[k]
+            read_text(path, "--" + k, f"a {k} file (see bem.read_{k})")
+            try:
+                reader(path)
+            except ValueError as exc:
+                raise bad_input("--" + k, path, str(exc).split(": ", 1)[-1],
+                                f"the format of bem.read_{k}") from None
+    return point
+
+
+def complete(point):
+    """The operating point without the options not given, with the defaults E∞/E0 = 3 and
+    hk = 1 where no file replaces them, and its files' paths absolute."""
+    point = dict(point)
+    if not point.get("prony") and point.get("ratio") is None:
+        point["ratio"] = 3.0
+    if not point.get("profile") and point.get("hk") is None:
+        point["hk"] = 1.0
+    point = {k: v for k, v in point.items() if v is not None}
+    for k in ("profile", "prony"):
+        if point.get(k):
+            point[k] = str(Path(point[k]).resolve())
+    return point
+
+
+def point_and_case(case):
+    """(operating point, suite case or None) of the Python API's ``case``: a suite case's name
+    or an operating-point dict."""
+    if isinstance(case, str):
+        return point_from_case(case)
+    if isinstance(case, dict):  # E∞/E0 and hk lead the point (its order shows in messages)
+        return check_point(complete({"ratio": None, "hk": None, **case}), option_prefix=""), None
+    raise TypeError(f"case={case!r}: a suite case name or an operating-point dict")
+
+
+def point_from_args(args):
+    """(operating point, case, SI scales or None) from the parsed options."""
+    given = {k: getattr(args, k) for k in ("load", "penetration", "speed", "ratio", "hk",
+                                            "profile", "prony")}
+    if args.case:
+        extra = [k for k, v in given.items() if v is not None]
+        if extra:
+            raise bad_input(f"--{extra[0]}", given[extra[0]], "given with --case",
+                            "--case alone, or the operating-point options without --case")
+        point, case = point_from_case(args.case)
+        si = None
+        if args.units == "SI":
+            si = si_fields(args)
+        return point, case, si
+    if given["speed"] is None:
+        raise bad_input("--speed", None, "missing",
+                        "--case NAME or --speed with --load/--penetration")
+    if args.units == "SI":
+        from viscosine._si import scales
+        if given["profile"] or given["prony"]:
+            raise bad_input("--units", "SI", "given with --profile/--prony",
+                            "SI operating points for the sinusoid on the standard linear solid")
+        need = [k for k in ("E0", "Einf", "tau", "nu", "wavelength", "amplitude")
+                if getattr(args, k) is None]
+        if need:
+            raise bad_input(f"--{need[0]}", None, "missing with --units SI",
+                            "--E0 --Einf --tau --nu --wavelength --amplitude")
+        try:
+            sc = scales(E0=args.E0, Einf=args.Einf, tau=args.tau, nu=args.nu,
+                        wavelength=args.wavelength, amplitude=args.amplitude, speed=given["speed"],
+                        mean_pressure=given["load"], penetration=given["penetration"])
+        except ValueError as exc:
+            raise BadInput(str(exc)) from None
+        point = {"load": sc.load, "penetration": sc.penetration, "speed": sc.speed,
+                 "ratio": sc.ratio, "hk": sc.hk}
+        point = {k: v for k, v in point.items() if v is not None}
+        return check_point(point), None, si_fields(args)
+    # the options given, in the parser's order; a default follows them
+    point = {k: v for k, v in given.items() if v is not None}
+    return check_point(complete(point)), None, None
+
+
+def si_fields(args):
+    """(E0 [Pa], ν, amplitude h [m]) that convert SI fields (`to_conventions`), checked."""
+    need = [k for k in ("E0", "nu", "amplitude") if getattr(args, k) is None]
+    if need:
+        raise bad_input(f"--{need[0]}", None, "missing with --units SI",
+                        "--E0, --nu and --amplitude to convert SI fields")
+    if not (args.E0 > 0 and -1.0 < args.nu <= 0.5 and args.amplitude > 0):
+        raise bad_input("--E0", args.E0, "E0, nu or amplitude out of range",
+                        "E0 > 0 Pa, nu in (-1, 0.5], amplitude > 0 m")
+    return (args.E0, args.nu, args.amplitude)
