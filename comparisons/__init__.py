@@ -7,6 +7,26 @@ benchmark suite, the verification of another code's results and a third code dri
 Operating points cross between the roads as plain dimensionless numbers (units, signs and keys of
 `docs/conventions.md`), never as shared objects.
 
+Where each job lives (a module imports only its own line and the lines below it):
+
+- ``cli/``, ``__main__``: the command line, one module per subcommand (``cli.SUBCOMMANDS``);
+  options in, exit status out; no logic of its own beyond the options.
+- ``verify/``, ``suite`` (with ``suite_inputs``, ``suite_export``), ``report`` (with
+  ``report_numbers``, ``report_runs``), ``crosscheck``, ``mastercurve``, ``points``: the jobs a
+  user runs.
+- ``plots/``: every figure, and the only importer of matplotlib.
+- ``runner``, ``_materials``, ``gate``, ``store``, ``_cluster``: an operating point from the
+  options to a checked record, its material, its last line of defence, its stored result, and
+  where it runs.
+- ``roads``, ``peers/``: the adapter to ``bem`` and ``analytic``, the only module that calls
+  them, and the third codes run as witnesses.
+- ``convergence`` (order, Richardson, certified digits), ``fields`` (patches and sampled
+  fields), ``_io`` (the atomic UTF-8 writer and the readers), ``_errors`` (what a command
+  reports), ``_html``: shared by all of the above.
+
+Beside these, ``bench/`` holds the benchmarks that print figures: it times the roads themselves
+and may use any job; only the command line's ``bench`` imports it.
+
 References
 ----------
 N. Menga, C. Putignano, G. Carbone and G. P. Demelio, The sliding contact of a rigid wavy surface

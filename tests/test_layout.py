@@ -1,0 +1,128 @@
+"""The comparison layer's layout holds: the order of its jobs that `comparisons/__init__.py`
+states, no import cycle, one matplotlib importer, one caller of the roads.  Function-level
+imports count: a lazy import is still an arrow."""
+import ast
+import pathlib
+import re
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+PKG = ROOT / "comparisons"
+
+
+def _modules():
+    out = {}
+    for path in PKG.rglob("*.py"):
+        if "data" in path.relative_to(PKG).parts:
+            continue
+        parts = list(path.relative_to(ROOT).with_suffix("").parts)
+        if parts[-1] == "__init__":
+            parts.pop()
+        out[".".join(parts)] = path
+    return out
+
+
+MODULES = _modules()
+
+
+def _imports(name, path):
+    """(absolute targets of every import in the module, top level or not)."""
+    package = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            yield from (a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package[:len(package) - node.level + 1]
+                mod = ".".join(base + ([node.module] if node.module else []))
+            else:
+                mod = node.module
+            yield mod
+            yield from (f"{mod}.{a.name}" for a in node.names)
+
+
+def _arrows():
+    """module -> the comparisons modules it imports."""
+    out = {}
+    for name, path in MODULES.items():
+        targets = set()
+        for t in _imports(name, path):
+            while t and t not in MODULES:
+                t = t.rpartition(".")[0]
+            if t and t != name and not name.startswith(t + "."):
+                targets.add(t)
+        out[name] = targets
+    return out
+
+
+def _floors():
+    """The jobs' lines of the package docstring, top to bottom: [{first path part, ...}, ...]."""
+    doc = ast.get_docstring(ast.parse((PKG / "__init__.py").read_text(encoding="utf-8")))
+    section = doc.split("Where each job lives", 1)[1].split("\n\n")[1]  # the list
+    floors = []
+    for item in re.split(r"\n- ", "\n" + section.strip()):
+        head = item.split(":", 1)[0]
+        names = {n.rstrip("/") for n in re.findall(r"``([\w/]+)``", head)}
+        if names:
+            floors.append(names)
+    return floors
+
+
+def test_the_stated_floors_name_every_module():
+    floors = _floors()
+    assert len(floors) >= 5
+    named = set().union(*floors) | {"bench"}  # beside the floors, said after them
+    for name in MODULES:
+        parts = name.split(".")
+        if len(parts) > 1:
+            assert parts[1] in named, f"{name} is in no line of comparisons/__init__.py"
+
+
+def test_no_module_imports_a_job_stated_above_it():
+    floors = _floors()
+    level = {n: i for i, names in enumerate(floors) for n in names}
+    for name, targets in _arrows().items():
+        for t in targets:
+            a, b = (level.get(x.split(".")[1]) if "." in x else None for x in (name, t))
+            if name.startswith("comparisons.bench"):
+                continue  # the benchmarks may use any job
+            assert t.startswith("comparisons.bench") <= name.startswith("comparisons.cli."), \
+                f"{name} imports the benchmarks: only the command line's bench does"
+            if a is None or b is None:
+                continue
+            assert b >= a, f"{name} imports {t}, which comparisons/__init__.py puts above it"
+
+
+def test_the_import_graph_has_no_cycle():
+    arrows = _arrows()
+    state = {}
+
+    def visit(v, path):
+        state[v] = 1
+        for w in arrows.get(v, ()):
+            if state.get(w) == 1:
+                pytest.fail("import cycle: " + " -> ".join(path[path.index(w):] + [w]))
+            if w not in state:
+                visit(w, path + [w])
+        state[v] = 2
+
+    for v in sorted(arrows):
+        if v not in state:
+            visit(v, [v])
+
+
+def test_only_plots_import_matplotlib():
+    for name, path in MODULES.items():
+        if name.startswith("comparisons.plots"):
+            continue
+        assert not any(t.split(".")[0] == "matplotlib" for t in _imports(name, path)), name
+
+
+def test_only_the_adapter_calls_the_roads():
+    allowed = ("comparisons.roads", "comparisons.bench", "comparisons.peers")  # as stated
+    for name, path in MODULES.items():
+        if name.startswith(allowed):
+            continue
+        roads = {t.split(".")[0] for t in _imports(name, path)} & {"bem", "analytic"}
+        assert not roads, f"{name} imports {roads}: the roads are called through roads.py"
