@@ -62,7 +62,7 @@ from __future__ import annotations
 
 import math
 import time
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass, field, replace
 
 import numpy as np
 
@@ -411,115 +411,156 @@ def solve(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dt=None, tolerance=1e-10
     Eq. (2.3) (the standard linear solid; τ is the creep time), the definitions of a, e, ê, Δ
     and τf of the paper.
     """
-    v = validate(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, dt=dt,
+    v = _checked(load=load, speed=speed, ratio=ratio, hk=hk, nodes=nodes, dt=dt,
                  tolerance=tolerance, steady_rtol=steady_rtol, max_periods=max_periods)
+    tm = _import_tamaas()
+    version = str(tm.__version__)
+    stepping = _stepping(v.get("dt"), v["speed"], v["nodes"])
+    warnings = _setup_warnings(version, v.get("dt"), stepping[2])
+    h = v["hk"] / _TWO_PI  # the amplitude in λ, Tamaas's length unit
+    run = _run_to_steady(tm, v, stepping, h)
+    return _result(v, stepping, h, run, warnings, version)
+
+
+def _checked(**inputs):
+    """`validate` the inputs of `solve`, each of them required but dt."""
+    v = validate(**inputs)
     for name in ("load", "speed", "ratio", "hk", "nodes", "tolerance", "steady_rtol",
                  "max_periods"):
         if name not in v:
             raise bad(name, None, ACCEPTED[name][2])
-    load, speed, ratio, hk, n = v["load"], v["speed"], v["ratio"], v["hk"], v["nodes"]
-    tolerance, steady_rtol, max_periods = v["tolerance"], v["steady_rtol"], v["max_periods"]
-    tm = _import_tamaas()
+    return v
+
+
+def _setup_warnings(version, dt_requested, dt_used):
+    """The caveats known before the run: a Tamaas version this adapter was not verified on, a
+    snapped time step."""
     warnings = []
-    if not str(tm.__version__).startswith("2.9."):
-        warnings.append(f"tamaas {tm.__version__} is not the version this adapter was verified "
+    if not version.startswith("2.9."):
+        warnings.append(f"tamaas {version} is not the version this adapter was verified "
                         f"on ({TAMAAS_REQUIREMENT})")
-    m_cells, s_steps, dt_used = _stepping(v.get("dt"), speed, n)
-    if v.get("dt") is not None and abs(dt_used / v["dt"] - 1.0) > 1e-9:
-        warnings.append(f"dt snapped from {v['dt']!r} to {dt_used!r} (a whole number of cells "
-                        "per step, or of steps per cell)")
-    steps_per_period = n * s_steps // m_cells
-    h = hk / _TWO_PI
-    period = _TWO_PI / speed
+    if dt_requested is not None and abs(dt_used / dt_requested - 1.0) > 1e-9:
+        warnings.append(f"dt snapped from {dt_requested!r} to {dt_used!r} (a whole number of "
+                        "cells per step, or of steps per cell)")
+    return warnings
 
-    # the profile at each sub-cell offset, rolled by whole cells: bitwise periodic in time
-    j = np.arange(n)
-    base = [h * np.cos(_TWO_PI * (j / n - k / (n * s_steps))) for k in range(s_steps)]
+
+@dataclass(frozen=True)
+class _SteadyRun:
+    """Tamaas stepped to the steady state, or for max_periods.
+
+    ``snapshot`` is the last period end's (σ̃, u, gap, `_measure`'s scalars) in the crest frame,
+    ``history`` the change over each period after the first (`_change`), ``tail`` the estimated
+    distance to the steady state (`_tail`), ``worst`` the largest Tamaas error over the last
+    period and ``wall`` the seconds taken.
+    """
+
+    snapshot: tuple
+    history: list
+    steps: int
+    periods: int
+    steady: bool
+    tail: float
+    worst: float
+    wall: float = math.nan
+
+    @property
+    def residual(self):
+        """The change over the last period (inf before the second period end)."""
+        return self.history[-1] if self.history else math.inf
+
+
+def _run_to_steady(tm, v, stepping, h):
+    """Build Tamaas's model and step it to the steady state (`_SteadyRun`); Tamaas's logging is
+    quietened meanwhile and restored after."""
+    base = _profiles(h, v["nodes"], stepping[1])
     surface = np.array(base[0], dtype=np.float64, order="C")  # Tamaas keeps a view of it
-
     level = tm.get_log_level()
     tm.set_log_level(tm.LogLevel.error)  # Tamaas logs every solve at the info level
     t0 = time.perf_counter()
     try:
-        model = tm.ModelFactory.createModel(tm.model_type.basic_1d, [1.0], [n])
-        model.E, model.nu = _E_TAMAAS, _NU  # model.mu = G∞ = 1
-        solver = tm.MaxwellViscoelastic(model, surface, tolerance, dt_used, [ratio - 1.0],
-                                        [1.0 / ratio])  # relaxation time τ_R = τ E0/E∞
-        target = load * _ESTAR0
-        history, prev, snap = [], None, None
-        steps, steady, tail, worst = 0, False, math.inf, 0.0
-        for period_no in range(1, max_periods + 1):
-            worst = 0.0
-            for _ in range(steps_per_period):
-                steps += 1
-                # crest position in 1/s of a cell: m cells per step (s = 1) or 1/s (m = 1)
-                cells, k = divmod(steps * m_cells, s_steps)
-                surface[:] = np.roll(base[k], cells % n)
-                err = solver.solve(target)
-                worst = max(worst, float(err))
-            # period end: crest on node 0; the crest frame is the lab frame rolled by N/2
-            sigma = np.roll(np.array(model.traction, dtype=float), n // 2) / _ESTAR0
-            u = np.roll(np.array(model.displacement, dtype=float), n // 2)
-            gap = np.roll(np.array(model["gap"], dtype=float), n // 2)
-            snap = (sigma, u, gap, _measure(sigma, u, gap, h, load))
-            if prev is not None:
-                resid = _change(prev, snap, h)
-                history.append(resid)
-                if len(history) >= 2 and history[-2] > 0.0:
-                    ratio_q = history[-1] / history[-2]
-                    tail = resid * ratio_q / (1.0 - ratio_q) if ratio_q < 1.0 else math.inf
-                else:
-                    tail = math.inf
-                if resid <= 10.0 * tolerance or (resid <= steady_rtol and tail <= steady_rtol):
-                    steady = True
-                    break
-            prev = snap
+        model, solver = _maxwell_model(tm, surface, v["ratio"], v["tolerance"], stepping[2])
+        run = _periods_to_steady(model, solver, surface, base, v, stepping, h)
     finally:
         tm.set_log_level(level)
-    wall = time.perf_counter() - t0
-    sigma, u, gap, meas = snap
-    contact = sigma > 0.0
-    complementarity = float(np.max(np.abs(gap[contact]))) / h if contact.any() else 0.0
-    gap_out = np.where(contact, 0.0, gap) / h  # Tamaas leaves its residual (≤ tolerance) there
-    x = np.arange(n) / n - 0.5
-    flds = Fields(x, sigma, (u - np.mean(u)) / h, gap_out)
-    resid = history[-1] if history else math.inf
-    converged = worst <= tolerance * (1.0 + 1e-6)
-    if len(meas["patches"]) and not meas["full_contact"] and min(
-            p.width for p in meas["patches"]) * n < 8:
-        warnings.append(f"a contact patch spans fewer than 8 of the {n} nodes: its edges and "
-                        "friction are poorly resolved")
-    if steady and converged:
-        success, status = True, 0
-        message = (f"steady after {period_no} periods ({steps} steps): change over the last "
-                   f"period {resid:.1e}")
-    else:
-        success, status = False, 1
-        why = [] if steady else [f"not steady after {period_no} periods (change over the last "
-                                 f"period {resid:.1e}, estimated distance to steady {tail:.1e} > "
-                                 f"steady_rtol = {steady_rtol:g}); raise max_periods"]
-        if not converged:
-            why.append(f"Tamaas's solver stopped at error {worst:.1e} > tolerance {tolerance:g}")
-        message = "; ".join(why)
-    diagnostics = {
-        "steps": steps, "periods": period_no, "steps_per_period": steps_per_period,
-        "dt_over_tau": dt_used, "dt_over_period": dt_used / period,
-        "dt_over_relaxation_time": dt_used * ratio, "dt_requested": v.get("dt"),
-        "cells_per_step": m_cells, "steps_per_cell": s_steps,
-        "steady_residual": resid, "steady_tail": tail if math.isfinite(tail) else None,
-        "steady_history": list(history), "solver_error": worst, "tolerance": tolerance,
-        "complementarity": complementarity,
-        "load_error": abs(meas["load"] / load - 1.0), "wall_time": wall,
-        "tamaas_version": str(tm.__version__)}
-    return TamaasResult(
-        success=success, status=status, message=message, warnings=tuple(warnings), nit=steps,
-        load=meas["load"], speed=speed, ratio=ratio, hk=hk, nodes=n, dt=dt_used,
-        full_contact=meas["full_contact"], contact_fraction=meas["contact_fraction"],
-        ka=meas["ka"], ke=meas["ke"], ke_hat=meas["ke_hat"], penetration=meas["penetration"],
-        separation=meas["separation"], tau_f=meas["tau_f"], mu=meas["mu"],
-        max_pressure=meas["max_pressure"], x_max_pressure=meas["x_max_pressure"],
-        n_patches=len(meas["patches"]), patches=meas["patches"], diagnostics=diagnostics,
-        load_asked=load, _fields=flds)
+    return replace(run, wall=time.perf_counter() - t0)
+
+
+def _profiles(h, n, s_steps):
+    """The sinusoid h cos 2π(x − k/(N s)) on the grid x = j/N at each sub-cell offset k < s: the
+    indenter at any step is one of them rolled by whole cells, so it is bitwise periodic in
+    time."""
+    j = np.arange(n)
+    return [h * np.cos(_TWO_PI * (j / n - k / (n * s_steps))) for k in range(s_steps)]
+
+
+def _maxwell_model(tm, surface, ratio, tolerance, dt):
+    """Tamaas's half-plane (G∞ = ``model.mu`` = 1) and its backward-Euler viscoelastic solver on
+    ``surface``: the standard linear solid of eq. (2.3) as one Maxwell branch."""
+    model = tm.ModelFactory.createModel(tm.model_type.basic_1d, [1.0], [surface.size])
+    model.E, model.nu = _E_TAMAAS, _NU  # model.mu = G∞ = 1
+    solver = tm.MaxwellViscoelastic(model, surface, tolerance, dt, [ratio - 1.0],
+                                    [1.0 / ratio])  # relaxation time τ_R = τ E0/E∞
+    return model, solver
+
+
+def _periods_to_steady(model, solver, surface, base, v, stepping, h):
+    """Step one period at a time until the change over a period is at Tamaas's tolerance, or it
+    and its geometric tail are below steady_rtol, or max_periods have passed (`_SteadyRun`)."""
+    target = v["load"] * _ESTAR0
+    history, prev, steps = [], None, 0
+    for period_no in range(1, v["max_periods"] + 1):
+        steps, worst = _one_period(solver, surface, base, stepping, steps, target)
+        snap = _snapshot(model, surface.size, h, v["load"])
+        steady, tail = False, math.inf
+        if prev is not None:
+            history.append(_change(prev, snap, h))
+            tail = _tail(history)
+            steady = (history[-1] <= 10.0 * v["tolerance"]
+                      or (history[-1] <= v["steady_rtol"] and tail <= v["steady_rtol"]))
+            if steady:
+                break
+        prev = snap
+    return _SteadyRun(snap, history, steps, period_no, steady, tail, worst)
+
+
+def _one_period(solver, surface, base, stepping, steps, target):
+    """Move the indenter and solve at every step of one period, after ``steps`` steps: (steps
+    taken in all, the largest Tamaas error of the period)."""
+    m_cells, s_steps, _ = stepping
+    n = surface.size
+    worst = 0.0
+    for _ in range(_steps_per_period(n, stepping)):
+        steps += 1
+        # crest position in 1/s of a cell: m cells per step (s = 1) or 1/s (m = 1)
+        cells, k = divmod(steps * m_cells, s_steps)
+        surface[:] = np.roll(base[k], cells % n)
+        worst = max(worst, float(solver.solve(target)))
+    return steps, worst
+
+
+def _steps_per_period(n, stepping):
+    """Time steps in a period of N cells (``stepping``: `_stepping`'s m, s and dt)."""
+    m_cells, s_steps, _ = stepping
+    return n * s_steps // m_cells
+
+
+def _snapshot(model, n, h, load):
+    """(σ̃, u, gap, `_measure`'s scalars) at a period end: the crest is then on node 0, so the
+    crest frame is the lab frame rolled by N/2."""
+    sigma = np.roll(np.array(model.traction, dtype=float), n // 2) / _ESTAR0
+    u = np.roll(np.array(model.displacement, dtype=float), n // 2)
+    gap = np.roll(np.array(model["gap"], dtype=float), n // 2)
+    return sigma, u, gap, _measure(sigma, u, gap, h, load)
+
+
+def _tail(history):
+    """The geometric tail c·q/(1 − q) of the changes per period, c the last and q its ratio to
+    the one before: the estimated distance to the steady state (inf unless they shrink)."""
+    if len(history) >= 2 and history[-2] > 0.0:
+        q = history[-1] / history[-2]
+        return history[-1] * q / (1.0 - q) if q < 1.0 else math.inf
+    return math.inf
 
 
 def _change(prev, snap, h):
@@ -532,6 +573,84 @@ def _change(prev, snap, h):
                float(np.max(np.abs(v1 - v0))) / scale_v,
                abs(m1["tau_f"] - m0["tau_f"]) / max(m1["tau_abs"], 1e-300),
                abs(m1["separation"] - m0["separation"]) * h / scale_v)
+
+
+def _result(v, stepping, h, run, warnings, version):
+    """The `TamaasResult` of a run: its last period end's scalars and fields, its verdict, its
+    caveats (``warnings`` and `_patch_warnings`) and its diagnostics."""
+    meas = run.snapshot[3]
+    n = v["nodes"]
+    success, status, message = _verdict(run, v["tolerance"], v["steady_rtol"])
+    return TamaasResult(
+        success=success, status=status, message=message,
+        warnings=tuple(warnings + _patch_warnings(meas, n)), nit=run.steps,
+        load=meas["load"], speed=v["speed"], ratio=v["ratio"], hk=v["hk"], nodes=n,
+        dt=stepping[2], full_contact=meas["full_contact"],
+        contact_fraction=meas["contact_fraction"], ka=meas["ka"], ke=meas["ke"],
+        ke_hat=meas["ke_hat"], penetration=meas["penetration"], separation=meas["separation"],
+        tau_f=meas["tau_f"], mu=meas["mu"], max_pressure=meas["max_pressure"],
+        x_max_pressure=meas["x_max_pressure"], n_patches=len(meas["patches"]),
+        patches=meas["patches"], diagnostics=_diagnostics(v, stepping, h, run, version),
+        load_asked=v["load"], _fields=_crest_fields(run.snapshot, h))
+
+
+def _verdict(run, tolerance, steady_rtol):
+    """(success, status, message): an answer only when the run is steady and every solve of its
+    last period reached Tamaas's tolerance."""
+    converged = run.worst <= tolerance * (1.0 + 1e-6)
+    if run.steady and converged:
+        return True, 0, (f"steady after {run.periods} periods ({run.steps} steps): change over "
+                         f"the last period {run.residual:.1e}")
+    why = [] if run.steady else [
+        f"not steady after {run.periods} periods (change over the last period "
+        f"{run.residual:.1e}, estimated distance to steady {run.tail:.1e} > steady_rtol = "
+        f"{steady_rtol:g}); raise max_periods"]
+    if not converged:
+        why.append(f"Tamaas's solver stopped at error {run.worst:.1e} > tolerance {tolerance:g}")
+    return False, 1, "; ".join(why)
+
+
+def _patch_warnings(meas, n):
+    """A caveat when a contact patch spans fewer than 8 of the N nodes (none in full contact)."""
+    if len(meas["patches"]) and not meas["full_contact"] and min(
+            p.width for p in meas["patches"]) * n < 8:
+        return [f"a contact patch spans fewer than 8 of the {n} nodes: its edges and friction "
+                "are poorly resolved"]
+    return []
+
+
+def _crest_fields(snapshot, h):
+    """σ̃, v/h from the mean line of the deformed surface and gap/h of a snapshot, on x_j = j/N − ½
+    (the crest frame)."""
+    sigma, u, gap, _ = snapshot
+    n = sigma.size
+    gap_out = np.where(sigma > 0.0, 0.0, gap) / h  # Tamaas leaves its residual (≤ tolerance) there
+    return Fields(np.arange(n) / n - 0.5, sigma, (u - np.mean(u)) / h, gap_out)
+
+
+def _complementarity(snapshot, h):
+    """The largest |gap|/h where σ > 0 in a snapshot (0 without contact)."""
+    sigma, _, gap, _ = snapshot
+    contact = sigma > 0.0
+    return float(np.max(np.abs(gap[contact]))) / h if contact.any() else 0.0
+
+
+def _diagnostics(v, stepping, h, run, version):
+    """The diagnostics of a run (listed in `TamaasResult`); times in units of τ."""
+    m_cells, s_steps, dt_used = stepping
+    period = _TWO_PI / v["speed"]
+    return {
+        "steps": run.steps, "periods": run.periods,
+        "steps_per_period": _steps_per_period(v["nodes"], stepping),
+        "dt_over_tau": dt_used, "dt_over_period": dt_used / period,
+        "dt_over_relaxation_time": dt_used * v["ratio"], "dt_requested": v.get("dt"),
+        "cells_per_step": m_cells, "steps_per_cell": s_steps,
+        "steady_residual": run.residual,
+        "steady_tail": run.tail if math.isfinite(run.tail) else None,
+        "steady_history": list(run.history), "solver_error": run.worst,
+        "tolerance": v["tolerance"], "complementarity": _complementarity(run.snapshot, h),
+        "load_error": abs(run.snapshot[3]["load"] / v["load"] - 1.0), "wall_time": run.wall,
+        "tamaas_version": version}
 
 
 # ----------------------------------------------------------------------------- dt study
