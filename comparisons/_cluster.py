@@ -15,6 +15,8 @@ import collections
 import os
 from typing import Any, Callable, Iterable, Iterator, NamedTuple
 
+from ._errors import BadInput, ClusterError, MissingPackage
+
 INSTALL_HINT = "pip install 'viscosine[cluster]'"
 
 
@@ -22,14 +24,6 @@ class Failure(NamedTuple):
     """The value yielded for an item whose evaluation failed (picklable, no traceback)."""
 
     error: str
-
-
-class ClusterError(RuntimeError):
-    """The executor could not be set up (unreachable scheduler)."""
-
-
-class MissingPackage(ClusterError):
-    """``distributed`` is not installed (the cluster extra)."""
 
 
 def _call_chunk(fn: Callable, chunk: list) -> list:
@@ -246,7 +240,7 @@ def executor(workers: int | None = None, scheduler: str | None = None) -> Execut
 
     Raises
     ------
-    ValueError
+    BadInput
         Both given, or workers < 1.
     MissingPackage
         distributed is not installed.
@@ -254,12 +248,12 @@ def executor(workers: int | None = None, scheduler: str | None = None) -> Execut
         The scheduler cannot be reached.
     """
     if scheduler is not None and workers is not None:
-        raise ValueError("--scheduler and --workers are not allowed together: the cluster decides "
-                         "how many workers run")
+        raise BadInput("--scheduler and --workers are not allowed together: the cluster decides "
+                       "how many workers run")
     if scheduler is not None:
         return DaskExecutor(scheduler)
     if workers is not None and workers < 1:
-        raise ValueError(f"workers={workers!r} is not allowed: an integer >= 1")
+        raise BadInput(f"workers={workers!r} is not allowed: an integer >= 1")
     if workers is None or workers == 1:
         return SerialExecutor()
     return ProcessExecutor(min(workers, 4 * (os.cpu_count() or 1)))

@@ -1,13 +1,25 @@
 """The errors a command reports in one line on standard error, never as a traceback.
 
 Raised by the command line (`comparisons.cli`) and by the library functions it calls (a sweep,
-`verify`, `mastercurve`, the output checks of `_io`), which therefore never import the command
-line: `comparisons.cli.main` prefixes the (sub)command and turns them into exit statuses.
+`runner`, `verify`, `mastercurve`, the suite, the readers and output checks of `_io`), which
+therefore never import the command line: `comparisons.cli.main` prefixes the (sub)command and
+turns them into exit statuses.  One hierarchy::
+
+    ValueError
+        BadInput            input outside what is supported: exit status 2
+            SuiteError      the suite's (an unknown case, unreadable suite data)
+            MissingPackage  an optional extra not installed (--scheduler without distributed)
+    RuntimeError
+        Failed              the work could not be done: exit status 1
+            StoreError      a stored result missing or not to be trusted
+            ClusterError    the executor could not be set up (an unreachable scheduler)
+
+In Python, bad input is therefore a ValueError, as the roads' own refusals are.
 """
 from __future__ import annotations
 
 
-class BadInput(Exception):
+class BadInput(ValueError):
     """Input outside what is supported: one line on standard error, exit status 2.
 
     ``prog`` names the (sub)command; `comparisons.cli.main` adds the subcommand's when it is None.
@@ -18,13 +30,40 @@ class BadInput(Exception):
         self.prog = prog
 
 
-class Failed(BadInput):
-    """The command could not do its work: one line on standard error, exit status 1."""
+class Failed(RuntimeError):
+    """The command could not do its work: one line on standard error, exit status 1.
+
+    ``prog`` as for `BadInput`.
+    """
+
+    def __init__(self, message, prog=None):
+        super().__init__(message)
+        self.prog = prog
 
 
-class InputError(ValueError):
-    """Input outside what is supported, raised by the library (`runner`, the readers of `_io`):
-    the command line reports it in one line on standard error, exit status 2."""
+class SuiteError(BadInput):
+    """Bad input to the suite (unknown case, unreadable data); one line for the command line."""
+
+
+class MissingPackage(BadInput):
+    """``distributed`` is not installed (the cluster extra): a request this installation cannot
+    serve."""
+
+
+class StoreError(Failed):
+    """A stored result is missing or cannot be trusted."""
+
+
+class ClusterError(Failed):
+    """The executor could not be set up (unreachable scheduler)."""
+
+
+def bad_input(option, value, problem, allowed=None):
+    """The BadInput ``option value: problem; allowed: allowed`` (without the value when None)."""
+    text = f"{option}: {problem}" if value is None else f"{option} {value}: {problem}"
+    if allowed:
+        text += f"; allowed: {allowed}"
+    return BadInput(text)
 
 
 def one_line(exc):

@@ -1,10 +1,11 @@
 """Files written so that an interrupted run never leaves half of one: the one atomic writer of
-text (UTF-8, '\\n' line ends, whatever the locale); the checks, before any work, that an output
-file or folder can be written; the reader of input files' bytes; one line on standard error;
-the reader of a CSV's numeric columns."""
+text (UTF-8, '\\n' line ends, whatever the locale) and what makes a document JSON; the checks,
+before any work, that an output file or folder can be written; the one reader of an input
+file's bytes (and text); one line on standard error; the reader of a CSV's numeric columns."""
 from __future__ import annotations
 
 import csv
+import math
 import os
 import secrets
 import stat
@@ -13,7 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ._errors import BadInput, InputError
+from ._errors import BadInput, bad_input
 
 
 def temporary_name(path) -> str:
@@ -35,6 +36,22 @@ def write_text(path, text: str) -> None:
     finally:
         if os.path.exists(tmp):
             os.unlink(tmp)
+
+
+def jsonable(o):
+    """``o`` ready for strict JSON (``allow_nan=False``): NumPy scalars as Python's, non-finite
+    floats as None (JSON null), tuples as lists, through dicts and lists."""
+    if isinstance(o, dict):
+        return {k: jsonable(v) for k, v in o.items()}
+    if isinstance(o, (list, tuple)):
+        return [jsonable(v) for v in o]
+    if isinstance(o, (np.floating, float)):
+        return float(o) if math.isfinite(o) else None
+    if isinstance(o, np.integer):
+        return int(o)
+    if isinstance(o, np.bool_):
+        return bool(o)
+    return o
 
 
 def stderr(text) -> None:
@@ -91,35 +108,46 @@ def check_output_dir(option, path, create) -> None:
         raise BadInput(f"{option} {path}: the folder is not writable")
 
 
-def file_bytes(option, path):
+def file_bytes(option, path, allowed=None):
     """The bytes of an input file, which must be a regular UTF-8 text file.
 
     Raises
     ------
-    InputError
-        One line ``<option> <path>: ...`` (a missing, special, binary or non-UTF-8 file).
+    BadInput
+        One line ``<option> <path>: <problem>`` (a missing, special, unreadable, binary or
+        non-UTF-8 file), then ``; allowed: <allowed>`` when given.
     """
-    where = f"{option} {path}"
     if path == "":
-        raise InputError(f"{option} '' is not allowed: the name of a file")
+        raise BadInput(f"{option} '' is not allowed: the name of a file")
     try:
         st = os.stat(path)
     except OSError as exc:
-        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
-    if not stat.S_ISREG(st.st_mode):
-        raise InputError(f"{where}: not a regular file ({_kind(st.st_mode)})")
+        raise bad_input(option, path, f"cannot read the file ({exc.strerror})", allowed) from None
+    if not stat.S_ISREG(st.st_mode):  # a FIFO is refused here, never read (it could block)
+        raise bad_input(option, path, f"not a regular file ({_kind(st.st_mode)})", allowed)
     try:
         with open(path, "rb") as fh:
             data = fh.read()
     except OSError as exc:
-        raise InputError(f"{where}: cannot read the file ({exc.strerror})") from None
+        raise bad_input(option, path, f"cannot read the file ({exc.strerror})", allowed) from None
     if b"\0" in data:
-        raise InputError(f"{where}: a binary file (NUL bytes); expected UTF-8 text")
+        raise bad_input(option, path, "a binary file, not text", allowed)
     try:
         data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise InputError(f"{where}: not UTF-8 text (byte {exc.start}); expected UTF-8 text") from None
+        raise bad_input(option, path, f"not UTF-8 text (byte {exc.start})", allowed) from None
     return data
+
+
+def read_text(option, path, allowed):
+    """The text of an input file (`file_bytes`, each refusal naming what is ``allowed``); a
+    missing file is said to be one, and a file of blank lines only is refused as empty."""
+    if not os.path.exists(path):
+        raise bad_input(option, path, "no such file", allowed)
+    data = file_bytes(option, path, allowed)
+    if not data.strip():
+        raise bad_input(option, path, "the file is empty", allowed)
+    return data.decode("utf-8")
 
 
 def _kind(mode):

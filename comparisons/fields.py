@@ -1,15 +1,21 @@
 """Helpers on sampled fields the comparison layer shares (verify's reading of another code's
 fields, the Tamaas peer's measuring of its own, the suite's and verify's contact patches and
-per-point errors).  The roads keep their own: bem and analytic share nothing but `viscosine`.
+per-point errors), and the fields CSV: its writer (``point --fields``, ``sweep --fields``) and
+its one reader (``verify --fields``), beside each other.  The roads keep their own: bem and
+analytic share nothing but `viscosine`.
 """
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 
 from viscosine import Fields
-from viscosine._fields import WIDTH
+from viscosine._fields import UNIFORM_SPACING, WIDTH
+
+from ._errors import bad_input
+from ._io import read_text, temporary_name
 
 
 def true_runs(mask) -> list:
@@ -108,3 +114,139 @@ def as_grid(columns) -> Fields:
     z = np.zeros(x.size)
     cols = [columns.get(c) for c in ("pressure", "displacement", "gap")]
     return Fields(x, *(z if a is None else a for a in cols), widths=columns.get(WIDTH))
+
+
+# ------------------------------------------------------------------------------ the fields CSV
+#: the fewest points of a fields file (and of the fields of a solver under test)
+MIN_POINTS = 8
+
+FIELDS_ALLOWED = ("a UTF-8 CSV: '#' lines, a header with x_over_lambda,pressure"
+                  "[,displacement,gap][,width], one row per point over one period, uniform or "
+                  "with cell widths (docs/conventions.md, 'Fields')")
+
+
+def write_fields_csv(path, fields, header=()):
+    """Write the fields (header ``#`` lines, the column line, one row per point) atomically.
+
+    ``fields``: a `viscosine.Fields` (or its columns, as `Fields.as_dict` gives them).  The
+    columns are ``x_over_lambda, pressure, displacement, gap`` and, on a non-uniform grid,
+    ``width`` (each row's cell, x/λ; the cells consecutive in row order over one period, the
+    first centred on its row: what `Fields.from_columns` reads back).  The file is written under
+    a name unique to this process and moved into place, so a reader never sees half a file and
+    two writers never share a temporary file.
+    """
+    f = fields if isinstance(fields, Fields) else Fields.from_columns(fields)
+    data = f.as_dict()
+    cols = list(data)
+    if not f.uniform:  # the CSV gives widths only: its first cell must be centred on its row
+        w0 = float(f.edges[1] - f.edges[0])
+        if abs(f.edges[0] - (f.x_over_lambda[0] - 0.5 * w0)) > 1e-9 * w0:
+            raise ValueError("the first cell is not centred on its point: its edges cannot be "
+                             "written as widths")
+    arrays = [np.asarray(data[c], dtype=float) for c in cols]
+    tmp = temporary_name(os.path.abspath(path))
+    try:
+        with open(tmp, "w", encoding="ascii", newline="\n") as fh:
+            for line in header:
+                fh.write(f"# {line}\n")
+            fh.write(",".join(cols) + "\n")
+            for row in zip(*arrays):
+                fh.write(",".join(repr(float(v)) for v in row) + "\n")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+
+
+def read_fields_csv(path, option="--fields") -> dict:
+    """The columns of one fields CSV file, checked (`parse_fields_csv`; `Fields.from_columns`
+    makes them a `viscosine.Fields`).
+
+    The format (what `write_fields_csv` writes, and what another code's fields must be for
+    ``verify --fields``): a header line with the columns ``x_over_lambda, pressure`` and
+    optionally ``displacement, gap`` (any order, other columns ignored), ``#`` comment lines
+    allowed before it, one row per point of a uniform grid over one period (any offset,
+    increasing x, the end point not repeated); or, with a ``width`` column, a non-uniform grid:
+    each row's cell width (x/λ), the cells consecutive in row order over one period, the first
+    centred on its row (the format ``python -m comparisons point --fields`` writes after a
+    contact window).  Units of the conventions (pressure σ(1 − ν²)/E0, displacement v/h,
+    gap/h); ``verify --units SI`` converts SI ones (Pa, m, m).
+
+    Raises
+    ------
+    BadInput
+        Naming ``option`` and the file: one that cannot be read as text (`read_text`), or whose
+        content `parse_fields_csv` refuses.
+    """
+    return parse_fields_csv(read_text(option, path, FIELDS_ALLOWED), option, str(path))
+
+
+def parse_fields_csv(text, option="--fields", name="<text>") -> dict:
+    """The columns of a fields CSV (`read_fields_csv`) as float arrays, checked.
+
+    Returns
+    -------
+    dict
+        ``x_over_lambda``, ``pressure`` and, when present, ``displacement``, ``gap`` and
+        ``width`` (the cells of a non-uniform grid).
+
+    Raises
+    ------
+    BadInput
+        Missing columns, non-numeric values, fewer than MIN_POINTS rows, a grid that is not
+        uniform over one period (without widths) or whose cells do not make one period (with
+        them).
+    """
+    lines = [ln for ln in text.splitlines() if ln.strip() and not ln.lstrip().startswith("#")]
+    if not lines:
+        raise bad_input(option, name, "no header line (only comments)", FIELDS_ALLOWED)
+    head = [h.strip().lower() for h in lines[0].split(",")]
+    if "x_over_lambda" not in head or "pressure" not in head:
+        raise bad_input(option, name, f"the columns x_over_lambda and pressure are required "
+                        f"(found: {', '.join(head)})", FIELDS_ALLOWED)
+    cols = {c: head.index(c) for c in ("x_over_lambda", "pressure", "displacement", "gap", WIDTH)
+            if c in head}
+    rows = []
+    for i, ln in enumerate(lines[1:], 2):
+        cells = [c.strip() for c in ln.split(",")]
+        if len(cells) < len(head):
+            raise bad_input(option, name, f"row {i - 1} has {len(cells)} fields, the header "
+                            f"{len(head)}", FIELDS_ALLOWED)
+        try:
+            rows.append([float(cells[j]) for j in cols.values()])
+        except ValueError:
+            raise bad_input(option, name, f"row {i - 1}: not a number in {ln.strip()[:60]!r}",
+                            FIELDS_ALLOWED) from None
+    data = np.array(rows, dtype=float).reshape(-1, len(cols))
+    if data.shape[0] < MIN_POINTS:
+        raise bad_input(option, name, f"{data.shape[0]} rows", f"at least {MIN_POINTS} points")
+    if not np.all(np.isfinite(data)):
+        raise bad_input(option, name, "non-finite values (nan or inf)", "finite numbers")
+    out = {c: data[:, k] for k, c in enumerate(cols)}
+    check_grid(out["x_over_lambda"], option, name, out.get(WIDTH))
+    return out
+
+
+def check_grid(x, option="--fields", name="<fields>", widths=None):
+    """BadInput unless x is increasing and uniform over exactly one period (end not repeated),
+    or, with ``widths``, the cells they give make one period with each point in its own."""
+    x = np.asarray(x, float)
+    if widths is not None:
+        z = np.zeros(x.size)
+        try:
+            Fields(x, z, z, z, widths=widths)
+        except ValueError as exc:
+            raise bad_input(option, name, f"the width column does not describe the grid ({exc})",
+                            "cells consecutive in row order over one period, the first centred on "
+                            "its row, each point in its cell") from None
+        return
+    m = x.size
+    dx = np.diff(x)
+    spread = float(np.max(np.abs(dx * m - 1.0))) if m > 1 else math.inf
+    if abs(x[-1] - x[0] - 1.0) < 1e-9:
+        raise bad_input(option, name, "the end point of the period is repeated",
+                        "one period, x_last = x_first + 1 − 1/M (drop the last row)")
+    if not spread < UNIFORM_SPACING:
+        raise bad_input(option, name, f"x_over_lambda is not a uniform grid over one period "
+                        f"(spacing × M − 1 reaches {spread:.2e})",
+                        "x_j = x_0 + j/M, j = 0..M−1, increasing")

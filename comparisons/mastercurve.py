@@ -36,7 +36,6 @@ friction), eqs (2.7)–(2.8) (the modulus at the sliding frequency k V).
 from __future__ import annotations
 
 import json
-import math
 import os
 import time
 from dataclasses import dataclass, field
@@ -44,7 +43,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ._errors import BadInput
-from ._io import check_output_dir, stderr, write_text
+from ._io import check_output_dir, jsonable, stderr, write_text
 from .plots import mastercurve as figure
 
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
@@ -316,16 +315,6 @@ def _append(path, row):
         os.fsync(fh.fileno())
 
 
-def _json_safe(v):
-    if isinstance(v, float) and not math.isfinite(v):
-        return None
-    if isinstance(v, dict):
-        return {k: _json_safe(x) for k, x in v.items()}
-    if isinstance(v, (list, tuple)):
-        return [_json_safe(x) for x in v]
-    return v
-
-
 # ------------------------------------------------------------------------------ into a folder
 def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, speeds,
                 mean_pressure, wavelength, amplitude, nu, nodes=None, rtol=None,
@@ -357,7 +346,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             amplitude=amplitude, nu=nu, nodes=nodes,
             rtol=DEFAULT_RTOL if rtol is None else rtol,
             max_residual=max_residual, per_decade=per_decade)
-    except ValueError as exc:  # InputError too
+    except ValueError as exc:  # BadInput too (the runner's and file readers'), re-worded
         text = str(exc).strip().splitlines()[0]
         for name, option in (("--speed ", "--speeds "), ("speed=", "--speeds "),
                              ("--temperature ", "--temperatures "),
@@ -397,7 +386,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
     doc = {"parameters": parameters, "columns": list(COLUMNS), "units": UNITS,
            "points": list(table.rows)}
     write_text(os.path.join(out, "mastercurve.json"),
-                  json.dumps(_json_safe(doc), indent=1, allow_nan=False) + "\n")
+               json.dumps(jsonable(doc), indent=1, allow_nan=False) + "\n")
     if table.success.any():
         figure.write_figure(os.path.join(out, "mastercurve.png"), table)
     stderr(f"mastercurve: {total - failed}/{total} points in {time.monotonic() - t0:.1f} s; "

@@ -14,6 +14,7 @@ import time
 from . import runner
 from ._errors import BadInput, Failed
 from ._io import check_output_dir, stderr
+from .fields import write_fields_csv
 
 
 def dump(record) -> str:
@@ -37,7 +38,7 @@ def write_fields(path, out, spec) -> None:
     """
     f = out["fields"]
     try:
-        runner.write_fields_csv(path, f, runner.fields_header(out["record"], spec, f))
+        write_fields_csv(path, f, runner.fields_header(out["record"], spec, f))
     except OSError as exc:
         raise Failed(f"cannot write --fields {path} ({exc.strerror or exc})") from None
 
@@ -81,13 +82,10 @@ def read_files(solver, files, *, profile=None, prony=None, material=None,
     for option, path in (("profile", profile), ("prony", prony), ("material", material)):
         if path is not None and solver == "bem" and option not in files and not (
                 option == "material" and prony is not None):
-            try:
-                files[option] = (runner.read_input(option, path) if option != "material" else
-                                 runner.read_material(path, **{
-                                     k: v for k, v in (material_options or {}).items()
-                                     if v is not None}))
-            except runner.InputError as exc:
-                raise BadInput(f"{exc}") from None
+            files[option] = (runner.read_input(option, path) if option != "material" else
+                             runner.read_material(path, **{
+                                 k: v for k, v in (material_options or {}).items()
+                                 if v is not None}))
     return files
 
 
@@ -124,20 +122,14 @@ def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields
     Raises
     ------
     BadInput
-        bad ``workers`` or ``scheduler``, the cluster extra missing, ``fields`` not creatable.
+        bad ``workers`` or ``scheduler``, the cluster extra missing (`MissingPackage`),
+        ``fields`` not creatable.
     Failed
-        the scheduler cannot be reached.
+        the scheduler cannot be reached (`ClusterError`).
     """
     from . import _cluster
     total = len(values) * len(speeds)
-    try:
-        ex = _cluster.executor(workers, scheduler)
-    except ValueError as exc:
-        raise BadInput(f"{exc}") from None
-    except _cluster.MissingPackage as exc:
-        raise BadInput(f"{exc}") from None
-    except _cluster.ClusterError as exc:
-        raise Failed(f"{exc}") from None
+    ex = _cluster.executor(workers, scheduler)
     if fields is not None:
         check_output_dir("--fields", fields, create=True)
 

@@ -14,7 +14,7 @@ and are never recorded.
 - :func:`resolve` turns command-line options (None = not given) into a spec: it is the one place
   where defaults are applied and options that do not apply are refused.
 - :func:`validate` checks a spec through the roads' own ``validate`` (the single source of the
-  accepted ranges) and raises :class:`InputError` (exit status 2).
+  accepted ranges) and raises `comparisons._errors.BadInput` (exit status 2).
 - :func:`run` solves one spec and returns a plain dict ``{"ok", "kind", "record", "error",
   "warnings", "fields", "spec", "seconds"}``; it never raises for a failing solve: any exception,
   an unconverged result or a result that fails the last line of defence
@@ -36,13 +36,13 @@ import warnings as _warnings
 import numpy as np
 
 import viscosine
-from viscosine import Fields, ViscosineWarning
+from viscosine import ViscosineWarning
 
 from . import roads
 from .gate import check_record
-from ._errors import InputError
+from ._errors import BadInput
 from ._errors import one_line as _one_line
-from ._io import file_bytes, temporary_name
+from ._io import file_bytes
 
 #: every default of the command line, applied in `resolve` only (rtol: the BEM's own default,
 #: viscosine.DEFAULT_RTOL, the one value both read)
@@ -98,10 +98,10 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
 
     Raises
     ------
-    InputError
+    BadInput
     """
     def refuse(option, why):
-        raise InputError(f"{option} is not allowed here: {why}")
+        raise BadInput(f"{option} is not allowed here: {why}")
 
     options = {k: v for k, v in (material_options or {}).items() if v is not None}
     in_si = options.pop("si", False)
@@ -135,7 +135,7 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
                    f"--nodes {nodes} fixes the mesh; --rtol and --max-nodes steer the adaptive "
                    "refinement (without --nodes)")
     else:
-        raise InputError(f"--solver {solver!r} is not allowed: analytic or bem")
+        raise BadInput(f"--solver {solver!r} is not allowed: analytic or bem")
 
     spec = dict.fromkeys(SPEC_KEYS)
     spec.update(solver=solver, load=load, penetration=penetration, speed=speed)
@@ -201,7 +201,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
 
     Raises
     ------
-    InputError
+    BadInput
         A missing, extra or invalid SI option, or a group outside the road's accepted range,
         named by the option the user typed.
     """
@@ -215,13 +215,13 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
     else:
         extra = [k for k in ("E0", "Einf", "tau", "tau_creep", "tau_relax") if k in given]
         if extra:
-            raise InputError(f"{_SI_NAMES[extra[0]]} is not allowed with --material: the "
-                             "material file fixes the moduli and times")
+            raise BadInput(f"{_SI_NAMES[extra[0]]} is not allowed with --material: the "
+                           "material file fixes the moduli and times")
     missing = [k for k in need if k not in given]
     if missing:
-        raise InputError(f"{_SI_NAMES[missing[0]]} is missing: --units SI needs --nu, "
-                         "--wavelength, --amplitude [m] and the material (--material FILE, or "
-                         "--E0 --Einf [Pa] with --tau-creep or --tau-relax [s])")
+        raise BadInput(f"{_SI_NAMES[missing[0]]} is missing: --units SI needs --nu, "
+                       "--wavelength, --amplitude [m] and the material (--material FILE, or "
+                       "--E0 --Einf [Pa] with --tau-creep or --tau-relax [s])")
     control = "mean_pressure" if loads is not None else "penetration"
     values = loads if loads is not None else penetrations
 
@@ -239,7 +239,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
                                          **{control: value})
             groups = roads.si_groups(solver, sc)
         except ValueError as exc:
-            raise InputError(_si_option_names(_one_line(exc))) from None
+            raise BadInput(_si_option_names(_one_line(exc))) from None
         return sc, groups
 
     sc, _ = scales(values[0], speeds[0])
@@ -299,14 +299,14 @@ def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_res
 
     Raises
     ------
-    InputError
+    BadInput
     """
     from . import _materials
     try:
         m = _materials.read(path, temperature=temperature, wlf=wlf, shift_table=shift_table,
                             max_residual=max_residual, per_decade=per_decade, si=si)
     except ValueError as exc:
-        raise InputError(_one_line(exc)) from None
+        raise BadInput(_one_line(exc)) from None
     return m.info, m
 
 
@@ -320,7 +320,7 @@ def read_input(option, path):
 
     Raises
     ------
-    InputError
+    BadInput
     """
     where = f"--{option} {path}"
     data = file_bytes(f"--{option}", path)
@@ -328,14 +328,14 @@ def read_input(option, path):
     try:
         obj = reader(path)
     except (ValueError, UnicodeDecodeError, OSError) as exc:
-        raise InputError(f"{where}: {_one_line(exc)}") from None
+        raise BadInput(f"{where}: {_one_line(exc)}") from None
     info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
     return info, obj
 
 
 # ------------------------------------------------------------------------------ validation
 def validate(spec):
-    """Check a spec before any work; raise InputError naming the input and what is allowed.
+    """Check a spec before any work; raise BadInput naming the input and what is allowed.
 
     The accepted ranges are the roads' own (`analytic.validate`, `bem.validate`, through
     `comparisons.roads`); the command line adds only the limits of its own options (mesh cap,
@@ -350,11 +350,11 @@ def validate(spec):
         elif spec["solver"] == "bem":
             roads.validate_bem(spec, _bem_problem(spec))
         else:
-            raise InputError(f"solver={spec['solver']!r} is not allowed: analytic or bem")
-    except InputError:
+            raise BadInput(f"solver={spec['solver']!r} is not allowed: analytic or bem")
+    except BadInput:
         raise
     except ValueError as exc:
-        raise InputError(_one_line(exc)) from None
+        raise BadInput(_one_line(exc)) from None
 
 
 def _check_int(name, value, low, high, what):
@@ -362,7 +362,7 @@ def _check_int(name, value, low, high, what):
     try:
         integer(name, value, f"an integer in [{low}, {high}] ({what})", lambda v: low <= v <= high)
     except ValueError as exc:
-        raise InputError(str(exc)) from None
+        raise BadInput(str(exc)) from None
 
 
 def _bem_problem(spec):
@@ -389,7 +389,7 @@ def _material(spec):
         try:
             obj = _materials.reread(spec["material"])
         except ValueError as exc:
-            raise InputError(_one_line(exc)) from None
+            raise BadInput(_one_line(exc)) from None
     return obj
 
 
@@ -436,7 +436,7 @@ def run(spec, fields=False, deep=None):
            "warnings": [], "fields": None, "seconds": 0.0}
     try:
         validate(spec)
-    except InputError as exc:
+    except BadInput as exc:
         out.update(kind="bad_input", error=str(exc), seconds=time.perf_counter() - t0)
         return out
     if deep is None:
@@ -507,8 +507,9 @@ def _run_with_fields(spec):
 
 # ------------------------------------------------------------------------------ writing fields
 def fields_header(record, spec, fields):
-    """The leading ``#`` lines of a fields CSV: version, operating point (the inputs as given;
-    for the BEM the mesh actually used), points, grid, units.  ASCII only, for any CSV reader.
+    """The leading ``#`` lines of a fields CSV (`comparisons.fields.write_fields_csv`):
+    version, operating point (the inputs as given; for the BEM the mesh actually used), points,
+    grid, units.  ASCII only, for any CSV reader.
 
     ``fields``: the `viscosine.Fields` written (or, for a uniform grid, its number of points).
     """
@@ -548,48 +549,3 @@ GRID_NON_UNIFORM = ("grid: non-uniform (a contact window: fine panels around the
                     "ones elsewhere); column width = the row's cell, the cells consecutive in row "
                     "order over one period, the first centred on its row; the mean over the "
                     "period is sum(width * column)")
-
-
-def write_fields_csv(path, fields, header=()):
-    """Write the fields (header ``#`` lines, the column line, one row per point) atomically.
-
-    ``fields``: a `viscosine.Fields` (or its columns, as `Fields.as_dict` gives them).  The
-    columns are ``x_over_lambda, pressure, displacement, gap`` and, on a non-uniform grid,
-    ``width`` (each row's cell, x/λ; the cells consecutive in row order over one period, the
-    first centred on its row: what `Fields.from_columns` reads back).  The file is written under
-    a name unique to this process and moved into place, so a reader never sees half a file and
-    two writers never share a temporary file.
-    """
-    f = fields if isinstance(fields, Fields) else Fields.from_columns(fields)
-    data = f.as_dict()
-    cols = list(data)
-    if not f.uniform:  # the CSV gives widths only: its first cell must be centred on its row
-        w0 = float(f.edges[1] - f.edges[0])
-        if abs(f.edges[0] - (f.x_over_lambda[0] - 0.5 * w0)) > 1e-9 * w0:
-            raise ValueError("the first cell is not centred on its point: its edges cannot be "
-                             "written as widths")
-    arrays = [np.asarray(data[c], dtype=float) for c in cols]
-    tmp = temporary_name(os.path.abspath(path))
-    try:
-        with open(tmp, "w", encoding="ascii", newline="\n") as fh:
-            for line in header:
-                fh.write(f"# {line}\n")
-            fh.write(",".join(cols) + "\n")
-            for row in zip(*arrays):
-                fh.write(",".join(repr(float(v)) for v in row) + "\n")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-
-
-def read_fields_csv(path) -> Fields:
-    """A fields CSV as written by `write_fields_csv` (``#`` lines skipped, columns by name):
-    a uniform grid without a ``width`` column, the cells it gives with one."""
-    with open(path, encoding="utf-8") as fh:
-        rows = [ln.strip() for ln in fh if ln.strip() and not ln.lstrip().startswith("#")]
-    if not rows:
-        raise ValueError(f"{path}: no header line")
-    head = [h.strip() for h in rows[0].split(",")]
-    data = np.array([r.split(",") for r in rows[1:]], dtype=float).reshape(-1, len(head))
-    return Fields.from_columns({h: data[:, i] for i, h in enumerate(head)})

@@ -25,14 +25,10 @@ from viscosine import Fields
 from viscosine._fields import WIDTH  # the cells of a non-uniform grid (optional)
 
 from . import gate, runner
+from ._errors import StoreError, one_line
 from ._io import temporary_name
-from ._errors import one_line
 
 FIELD_NAMES = ("x_over_lambda", "pressure", "displacement", "gap")
-
-
-class StoreError(RuntimeError):
-    """A stored result is missing or cannot be trusted."""
 
 
 def key(spec):

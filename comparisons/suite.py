@@ -92,10 +92,12 @@ import math
 import sys
 import time
 from pathlib import Path
+from typing import NamedTuple
 
 import numpy as np
 
 from . import roads as _roads
+from ._errors import SuiteError
 from ._io import read_columns, write_text
 from .convergence import (LAST, MAX_ORDER, MIN_ORDER, RELATIVE_FLOOR, ROUNDOFF, SCATTER_FLOOR,
                           digits, half_unit, rounded, study)
@@ -154,10 +156,6 @@ RULE = (
 FIELD_COLUMNS = ("pressure", "displacement", "gap")
 TOP_KEYS = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction", "ka", "ke",
             "ke_hat")
-
-
-class SuiteError(ValueError):
-    """Bad input to the suite (unknown case, unreadable data); one line for the command line."""
 
 
 # --------------------------------------------------------------------------- the suite file
@@ -380,10 +378,49 @@ def compute(case, base=DATA, progress=None):
     reference = reference_of(case)
     problem = _problem(point, base)
     shape = ProfileShape(point, base)
+    M = _field_points(case, nodes)
+    meshes = _solve_meshes(point, nodes, base, problem, shape, M, progress)
+    ref, four, ref_failures = _references(point, roads, reference, problem[1])
+    four_ok = four is not None and bool(four.success)
+    full = _full_contact(meshes.runs, ref)
+    npatch = _patch_count(meshes.patches, full, roads)
+    scalars = _certified_scalars(_scalar_keys(point, full, npatch), meshes, ref, four, four_ok,
+                                 roads, full)
+    patch_out = _certified_patches(meshes, full, npatch)
+    fields, field_summary = _certified_fields(point, nodes, meshes.grid_fields, ref, M, roads)
+    status, notes = _status(meshes.failures + ref_failures, meshes.runs, full,
+                            four if four_ok else None)
+    method = "two roads" if roads else FOURIER_METHOD if four is not None else "bem convergence"
+    certified = {"method": method, "status": status,
+                 "notes": notes, "scalars": scalars, "exact": _exact(point, full),
+                 "patches": patch_out, "fields": field_summary}
+    if four is not None:
+        certified["reference"] = _reference_record(four, four_ok)
+    return certified, fields
+
+
+def _field_points(case, nodes):
+    """M, the points of the stated grid of the fields; SuiteError unless the two finest meshes
+    are multiples of M (the grid's points are then panel centres of both)."""
     M = int(case.get("field_points", FIELD_POINTS))
     if nodes[-1] % M or nodes[-2] % M:
         raise SuiteError(f"case {case['name']}: the two finest meshes must be multiples of {M}")
+    return M
 
+
+class _Meshes(NamedTuple):
+    """The BEM on every mesh of a case (`_solve_meshes`), coarse to fine."""
+
+    nodes: list        # the meshes N
+    runs: list         # the solution on each, None where the solve failed
+    patches: list      # the patches on each (`patch_records`), None where the solve failed
+    grid_fields: dict  # N -> the fields on the stated grid, for the two finest meshes solved
+    failures: list     # a line per failed solve
+
+
+def _solve_meshes(point, nodes, base, problem, shape, M, progress):
+    """Solve the BEM on every mesh (`_Meshes`), with its patches and, on the two finest, its
+    fields on the stated grid of M points; ``progress`` gets a line per mesh."""
     runs, patches, failures = [], [], []
     grid_fields = {}
     for n in nodes:
@@ -401,82 +438,111 @@ def compute(case, base=DATA, progress=None):
         if progress:
             progress(f"N = {n}: {'ok' if r.success else 'FAILED'} "
                      f"({time.perf_counter() - t0:.2f} s)")
+    return _Meshes(nodes, runs, patches, grid_fields, failures)
 
+
+def _references(point, roads, reference, material):
+    """(ref, four, failures): the semi-analytic solution on two roads (None otherwise, and None
+    when it failed: nothing of it is then used), the Fourier reference when the case declares
+    it (kept when it failed: the record says what it said) and a line per failure."""
+    failures = []
     ref = _roads.analytic_solution(point) if roads else None
     if ref is not None and not ref.success:
         failures.append(f"semi-analytic: {ref.message}")
-        ref_ok = False
-    else:
-        ref_ok = ref is not None
-    four = _roads.fourier_solution(point, problem[1]) if reference == "fourier" else None
-    four_ok = four is not None and bool(four.success)
-    if four is not None and not four_ok:
+        ref = None
+    four = _roads.fourier_solution(point, material) if reference == "fourier" else None
+    if four is not None and not four.success:
         failures.append(f"Fourier reference: {four.message.splitlines()[0][:200]}")
-    fin = next((r for r in reversed(runs) if r is not None), None)
-    full = bool(ref.full_contact) if ref_ok else bool(fin.full_contact) if fin else False
-    fulls = {bool(r.full_contact) for r in runs if r is not None}
-    if full:
-        npatch = 1
-    elif patches[-1] is not None:
-        npatch = len(patches[-1])
-    else:
-        npatch = 1 if roads else 0
-    keys = _scalar_keys(point, full, npatch)
+    return ref, four, failures
 
+
+def _full_contact(runs, ref):
+    """Whether the case is in full contact: as the semi-analytic solution ``ref`` says, else as
+    the finest mesh solved says (False when none was)."""
+    if ref is not None:
+        return bool(ref.full_contact)
+    fin = next((r for r in reversed(runs) if r is not None), None)
+    return bool(fin.full_contact) if fin is not None else False
+
+
+def _patch_count(patches, full, roads):
+    """The contact patches to certify: one in full contact, else the finest mesh's; when that
+    mesh failed, one on two roads (the sinusoid) and none otherwise."""
+    if full:
+        return 1
+    if patches[-1] is not None:
+        return len(patches[-1])
+    return 1 if roads else 0
+
+
+def _certified_scalars(keys, meshes, ref, four, four_ok, roads, full):
+    """The record of each scalar of ``keys`` (`_certify`): the BEM's study over the meshes,
+    with the semi-analytic solution ``ref`` on two roads, or checked against the Fourier
+    reference ``four`` when the case declares one (no agreement to certify when it failed)."""
     scalars = {}
     for k in keys:
-        seq = [_value(r, k) if r is not None else float("nan") for r in runs]
+        seq = [_value(r, k) if r is not None else float("nan") for r in meshes.runs]
         if k in ("ka", "ke", "ke_hat") and not full and not roads:
             # single patch on another profile: measured from its summit
-            seq = [p[0][k] if p and len(p) == 1 else float("nan") for p in patches]
-        a = _value(ref, k) if ref_ok else float("nan")
+            seq = [p[0][k] if p and len(p) == 1 else float("nan") for p in meshes.patches]
+        a = _value(ref, k) if ref is not None else float("nan")
         fv = None
         if four is not None:
             fv = _fourier_evidence(four, k) if four_ok else (float("nan"), float("nan"))
-        scalars[k] = _certify(a, nodes, seq, roads and ref_ok, fv)
-        if roads and not ref_ok:
+        scalars[k] = _certify(a, meshes.nodes, seq, roads and ref is not None, fv)
+        if roads and ref is None:
             scalars[k]["method"] = "two roads (semi-analytic failed)"
+    return scalars
 
+
+def _certified_patches(meshes, full, npatch):
+    """The record of each quantity of each patch (PATCH_KEYS, BEM convergence) when there are
+    several, the patches of every mesh matched to the finest mesh's."""
+    patch_out = []
+    if not full and npatch > 1:
+        matched = [match_patches(meshes.patches[-1], p) for p in meshes.patches]
+        for j in range(npatch):
+            rec = {}
+            for k in PATCH_KEYS:
+                seq = [m[j][k] if m[j] is not None else float("nan") for m in matched]
+                rec[k] = _certify(float("nan"), meshes.nodes, seq, False)
+            patch_out.append(rec)
+    return patch_out
+
+
+def _exact(point, full):
+    """The quantities exact by construction: full contact or not, an imposed Δ/h, and in full
+    contact ka = π, 2a/λ = 1, Δ/h = 1, s/h = 0 and no ke."""
     exact = {"full_contact": full}
     if point.get("penetration") is not None:
         exact["penetration"] = float(point["penetration"])
     if full:
         exact.update(ka=math.pi, contact_fraction=1.0, penetration=1.0, separation=0.0, ke=None)
+    return exact
 
-    patch_out = []
-    if not full and npatch > 1:
-        matched = [match_patches(patches[-1], p) for p in patches]
-        for j in range(npatch):
-            rec = {}
-            for k in PATCH_KEYS:
-                seq = [m[j][k] if m[j] is not None else float("nan") for m in matched]
-                rec[k] = _certify(float("nan"), nodes, seq, False)
-            patch_out.append(rec)
 
-    fields, field_summary = _certified_fields(point, nodes, grid_fields, ref if ref_ok else None,
-                                              M, roads)
-    status = "complete"
+def _status(failures, runs, full, four):
+    """("complete" or "incomplete", notes): incomplete when a solve failed, or when a mesh or
+    the Fourier reference ``four`` (None unless it succeeded) disagrees on full contact."""
     notes = []
     if failures:
-        status = "incomplete"
         notes.append("solver failures: " + "; ".join(failures))
-    if len(fulls) > 1 or (ref_ok and fin is not None and bool(fin.full_contact) != full) \
-            or (four_ok and bool(four.full_contact) != full):
-        status = "incomplete"
+    # full is the semi-analytic road's, else the finest mesh's: a solution that differs from it
+    # is a disagreement between the roads or between the meshes
+    solved = [r for r in runs if r is not None] + ([] if four is None else [four])
+    if any(bool(s.full_contact) != full for s in solved):
         notes.append("the roads or meshes disagree on full contact")
-    method = "two roads" if roads else FOURIER_METHOD if four is not None else "bem convergence"
-    certified = {"method": method, "status": status,
-                 "notes": notes, "scalars": scalars, "exact": exact, "patches": patch_out,
-                 "fields": field_summary}
-    if four is not None:
-        # what the reference was and what it said (its caveats included), not its timing:
-        # the record must not change when nothing certified does
-        certified["reference"] = {"solver": "analytic.fourier_solve", "success": four_ok,
-                                  "message": four.message.splitlines()[0][:300],
-                                  "warnings": [w[:300] for w in four.warnings],
-                                  "nodes": [int(n) for n in four.nodes],
-                                  "shifts": int(four.shifts), "require_resolved": False}
-    return certified, fields
+    return ("incomplete" if notes else "complete"), notes
+
+
+def _reference_record(four, four_ok):
+    """What the Fourier reference was and what it said (its caveats included), not its timing:
+    the record must not change when nothing certified does."""
+    return {"solver": "analytic.fourier_solve", "success": four_ok,
+            "message": four.message.splitlines()[0][:300],
+            "warnings": [w[:300] for w in four.warnings],
+            "nodes": [int(n) for n in four.nodes],
+            "shifts": int(four.shifts), "require_resolved": False}
 
 
 def _certified_fields(point, nodes, grid_fields, ref, M, roads):

@@ -16,7 +16,7 @@ import pytest
 
 import analytic
 import bem
-from comparisons import cli, points, runner
+from comparisons import cli, fields, points, runner
 
 KEYS = {"solver", "load", "speed", "ratio", "hk", "full_contact", "contact_fraction", "ka", "ke",
         "ke_hat", "penetration", "tau_f", "mu", "version", "success", "message", "warnings",
@@ -265,8 +265,8 @@ def test_fields_are_written_atomically_under_a_unique_temporary_name(monkeypatch
         return real(src, dst)
     monkeypatch.setattr(runner.os, "replace", spy)
     f = analytic.solve(load=0.3, speed=1.0).fields(np.arange(16) / 16 - 0.5)
-    runner.write_fields_csv(tmp_path / "a.csv", f)
-    runner.write_fields_csv(tmp_path / "a.csv", f)
+    fields.write_fields_csv(tmp_path / "a.csv", f)
+    fields.write_fields_csv(tmp_path / "a.csv", f)
     assert len(seen) == 2 and seen[0] != seen[1]
     assert all(f".{os.getpid()}." in s and s.startswith(".a.csv.") for s in seen)
     assert sorted(p.name for p in tmp_path.iterdir()) == ["a.csv"]

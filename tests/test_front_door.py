@@ -17,7 +17,7 @@ import pytest
 
 import analytic
 import bem
-from comparisons import runner, suite, verify
+from comparisons import fields, runner, suite
 from conftest import ROUNDOFF
 from viscosine import Fields
 
@@ -70,12 +70,12 @@ def test_a_window_point_is_answered_by_point_and_its_fields_carry_the_load(tmp_p
     assert abs(math.fsum(w) - 1.0) <= ROUNDOFF
     assert abs(math.fsum(w * p) / rec["load"] - 1.0) <= 1e-9
     assert abs(p.mean() / rec["load"] - 1.0) > 1.0  # why a plain mean of the rows is wrong
-    f = runner.read_fields_csv(path)
+    f = Fields.from_columns(fields.read_fields_csv(path))
     assert not f.uniform and f.x_over_lambda.size == len(rows)
     assert abs(f.mean("pressure") / rec["load"] - 1.0) <= 1e-9
     assert abs(f.mean("displacement")) <= 1e-9  # v from the mean line of the deformed surface
     assert abs(f.mean("gap") - rec["separation"]) <= 1e-9  # the mean gap is s/h
-    g = verify.read_fields_csv(path)  # verify's reader takes the same file
+    g = fields.read_fields_csv(path)  # verify's reader takes the same file
     assert np.array_equal(g["width"], f.widths)
 
 
@@ -135,7 +135,7 @@ def test_a_profile_file_point_end_to_end(tmp_path):
     rec = json.loads(proc.stdout)
     assert rec["hk"] is None and rec["profile_file"]["path"] == str(profile)
     _certified(case, rec)
-    f = runner.read_fields_csv(path)  # no window on a profile: the uniform grid, no width column
+    f = Fields.from_columns(fields.read_fields_csv(path))  # no window on a profile: uniform
     header = next(ln for ln in path.read_text().splitlines() if not ln.startswith("#"))
     assert f.uniform and header == "x_over_lambda,pressure,displacement,gap"
     assert "# " + runner.GRID_UNIFORM in path.read_text().splitlines()
@@ -144,8 +144,8 @@ def test_a_profile_file_point_end_to_end(tmp_path):
 
 def test_the_suite_s_uniform_fields_files_still_read():
     for path in sorted((DATA / "fields").glob("*.csv")):
-        f = runner.read_fields_csv(path)
-        cols = verify.read_fields_csv(path)
+        f = Fields.from_columns(fields.read_fields_csv(path))
+        cols = fields.read_fields_csv(path)
         assert f.uniform and "width" not in cols
         assert np.array_equal(f.widths, np.full(256, 1 / 256))
 
@@ -236,5 +236,6 @@ def test_a_window_result_s_fields_tile_the_period_with_its_panels(tmp_path):
     st.put(spec, out, fields=True)
     back = Fields.from_columns(st.get(spec, fields=True)["fields"])
     assert np.array_equal(back.edges, f.edges) and back.mean("pressure") == f.mean("pressure")
-    runner.write_fields_csv(tmp_path / "f.csv", f)
-    assert np.array_equal(runner.read_fields_csv(tmp_path / "f.csv").edges, f.edges)
+    fields.write_fields_csv(tmp_path / "f.csv", f)
+    assert np.array_equal(Fields.from_columns(fields.read_fields_csv(tmp_path / "f.csv")).edges,
+                          f.edges)

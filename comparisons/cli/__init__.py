@@ -91,7 +91,7 @@ def main(argv=None):
                     "several)" if args.command == "point" and stray_value else "")
             raise BadInput(f"unrecognized arguments: {' '.join(extra)}{hint}")
         return args.run(args)
-    except BadInput as exc:  # Failed too
+    except (BadInput, Failed) as exc:
         prog = exc.prog or " ".join([parser.prog] + ([args.command] if args else []))
         stderr(f"{prog}: {one_line(exc)}")
         return EXIT_FAILED if isinstance(exc, Failed) else EXIT_BAD_INPUT

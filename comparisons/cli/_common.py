@@ -237,17 +237,13 @@ def check_workers(args):
 
 def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=None):
     """The spec of point's and sweep's options (`runner.resolve`: defaults, what applies)."""
-    try:
-        return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
-                              ratio=args.ratio, hk=args.hk, nodes=args.nodes, rtol=args.rtol,
-                              max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
-                              fields=args.fields is not None, files=files,
-                              material=args.material,
-                              material_options={**material_options(args),
-                                                "si": args.units == "SI" or None},
-                              si=si)
-    except runner.InputError as exc:
-        raise BadInput(str(exc)) from None
+    return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
+                          ratio=args.ratio, hk=args.hk, nodes=args.nodes, rtol=args.rtol,
+                          max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
+                          fields=args.fields is not None, files=files, material=args.material,
+                          material_options={**material_options(args),
+                                            "si": args.units == "SI" or None},
+                          si=si)
 
 
 def units_si(args, files):
@@ -272,21 +268,15 @@ def units_si(args, files):
             raise BadInput("--material is not allowed here: a BEM option (the semi-analytic road "
                            "solves the sinusoid on the standard linear solid; use --solver bem)")
         opts = {k: v for k, v in material_options(args).items() if v is not None}
-        try:
-            files["material"] = runner.read_material(args.material, **opts, si=True)
-        except runner.InputError as exc:
-            raise BadInput(f"{exc}") from None
+        files["material"] = runner.read_material(args.material, **opts, si=True)
         material = files["material"][1]
     several = isinstance(args.speed, list)
 
     def listed(v):
         return None if v is None else (v if several else [v])
-    try:
-        out = runner.resolve_si(args.solver, given, loads=listed(args.load),
-                                penetrations=listed(args.penetration), speeds=listed(args.speed),
-                                material=material)
-    except runner.InputError as exc:
-        raise BadInput(f"{exc}") from None
+    out = runner.resolve_si(args.solver, given, loads=listed(args.load),
+                            penetrations=listed(args.penetration), speeds=listed(args.speed),
+                            material=material)
     for key in ("load", "penetration", "speed"):
         if out[key] is not None:
             setattr(args, key, out[key] if several else out[key][0])
@@ -302,7 +292,7 @@ def material_options(args):
 def validate(spec):
     try:
         runner.validate(spec)
-    except runner.InputError as exc:
+    except BadInput as exc:
         raise BadInput(_option_names(str(exc))) from None
 
 

@@ -1,8 +1,8 @@
 """``report``: the cross-validation report on the paper's parameters (`comparisons.report`)."""
 from __future__ import annotations
 
-from ._common import (EXIT_FAILED, EXIT_OK, BadInput, Failed, Once, check_output_dir,
-                      check_workers, parallel_options)
+from ._common import (EXIT_FAILED, EXIT_OK, Failed, Once, check_output_dir, check_workers,
+                      parallel_options)
 
 
 def add_parser(sub):
@@ -19,14 +19,10 @@ def run(args):
     check_workers(args)
     out = "report" if args.out is None else args.out
     check_output_dir("--out", out, create=False)
-    from .. import _cluster, report
-    try:
+    from .. import report
+    try:  # MissingPackage (exit status 2) and ClusterError (1) reach main as they are
         failed = report.build(out, quick=args.quick, workers=args.workers, resume=args.resume,
                               scheduler=args.scheduler)
-    except _cluster.MissingPackage as exc:
-        raise BadInput(f"{exc}") from None
-    except _cluster.ClusterError as exc:
-        raise Failed(f"{exc}") from None
     except OSError as exc:  # the folder went away or filled up during the run
         raise Failed(f"--out {out}: cannot write {exc.filename or 'the report'} "
                      f"({exc.strerror or exc})") from None

@@ -60,10 +60,8 @@ def run(args) -> int:
                                    "cluster decides how many workers run")
         res = suite.check(args.cases, out=args.out, resume=args.resume, workers=args.workers,
                           scheduler=args.scheduler, suite=book)
-    except suite.SuiteError as exc:
-        print(str(exc).splitlines()[0], file=sys.stderr)
-        return EXIT_BAD_INPUT
-    except _cluster.MissingPackage as exc:  # --scheduler without the cluster extra
+    except (suite.SuiteError, _cluster.MissingPackage) as exc:
+        # bad input, or --scheduler without the cluster extra
         print(str(exc).splitlines()[0], file=sys.stderr)
         return EXIT_BAD_INPUT
     except _cluster.ClusterError as exc:  # an unreachable scheduler

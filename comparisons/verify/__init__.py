@@ -10,7 +10,8 @@
 
 One module per step, each documenting its part of the method (`docs/cli.md` for the user):
 
-- ``_inputs``: reading the fields CSV, the JSON lines of scalars and the callable; bad input;
+- ``_inputs``: reading the JSON lines of scalars and the callable (the fields CSV:
+  `comparisons.fields.read_fields_csv`); bad input;
 - ``_point``: the operating point (a suite case, a dict or the options), checked;
 - ``_scalars`` and ``_edges``: scalars and contact patches from fields, and verify's own fit of
   the contact edges;
@@ -35,8 +36,7 @@ from ._command import DEFAULT_NODES, DEFAULT_PEER_NODES, MESSAGE_LIMIT, run
 from ._compare import POSITION_PANELS, derivation_floor, evaluate, position_floor
 from ._diagnose import MIRRORED, SLIP_GAIN, diagnose
 from ._edges import EDGE_DEGREE, EDGE_HOLDS, EDGE_PASSES, EDGE_STILL, edge_offset
-from ._inputs import (FIELDS_ALLOWED, MIN_POINTS, SCALARS_ALLOWED, BadInput, check_grid,
-                      load_callable, parse_fields_csv, read_fields_csv, read_scalars_jsonl)
+from ._inputs import SCALARS_ALLOWED, load_callable, read_scalars_jsonl
 from ._point import check_point, point_from_case
 from ._quantities import ABS, ALL_KEYS, COMPARED_KEYS, LABELS, NORM_KEYS, REL, norms
 from ._reference import REFERENCE_MIN_NODES, Reference, reference_for
@@ -52,14 +52,13 @@ from ._tolerances import (DEFAULT_RTOL, FIELD_LAW, GRID_FACTOR, GRID_MAX_NODES,
 __all__ = [
     "ABS", "ALL_KEYS", "COMPARED_KEYS", "CONTACT", "DEFAULT_DT_CELLS", "DEFAULT_NODES",
     "DEFAULT_PEER_NODES", "DEFAULT_RTOL", "EDGE_DEGREE", "EDGE_HOLDS", "EDGE_PASSES",
-    "EDGE_STILL", "FIELDS_ALLOWED", "FIELD_LAW", "GRID_FACTOR", "GRID_MAX_NODES", "LABELS",
-    "MEASURED_FIELD_CONSTANTS", "MESSAGE_LIMIT", "MIN_POINTS", "MIRRORED", "NORM_KEYS",
-    "ORDER_FLOOR", "POSITION_PANELS", "REFERENCE_MIN_NODES", "REL", "SCALARS_ALLOWED",
-    "SCALARS_FROM_FIELDS", "SLIP_GAIN", "BadInput", "Reference", "Result", "assert_agrees",
-    "check_grid", "check_point", "convergence", "derivation_floor", "diagnose", "edge_offset",
-    "evaluate", "field_constants", "field_tolerance", "fit_order", "grid_errors", "grid_size",
-    "load_callable", "markdown", "norms", "parse_fields_csv", "peer_tamaas", "point_from_case",
-    "position_floor", "read_fields_csv", "read_scalars_jsonl", "reference_for",
-    "results_from_fields", "run", "scalars_from_fields", "to_conventions", "tolerances",
-    "viscosine_bem", "write_report",
+    "EDGE_STILL", "FIELD_LAW", "GRID_FACTOR", "GRID_MAX_NODES", "LABELS",
+    "MEASURED_FIELD_CONSTANTS", "MESSAGE_LIMIT", "MIRRORED", "NORM_KEYS", "ORDER_FLOOR",
+    "POSITION_PANELS", "REFERENCE_MIN_NODES", "REL", "SCALARS_ALLOWED", "SCALARS_FROM_FIELDS",
+    "SLIP_GAIN", "Reference", "Result", "assert_agrees", "check_point", "convergence",
+    "derivation_floor", "diagnose", "edge_offset", "evaluate", "field_constants",
+    "field_tolerance", "fit_order", "grid_errors", "grid_size", "load_callable", "markdown",
+    "norms", "peer_tamaas", "point_from_case", "position_floor", "read_scalars_jsonl",
+    "reference_for", "results_from_fields", "run", "scalars_from_fields", "to_conventions",
+    "tolerances", "viscosine_bem", "write_report",
 ]

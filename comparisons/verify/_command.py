@@ -15,13 +15,13 @@ import sys
 import time
 from pathlib import Path
 
-from .. import _errors
 from .. import suite as _suite
+from .._errors import BadInput, Failed, bad_input
 from .._io import check_output_dir
+from ..fields import MIN_POINTS, read_fields_csv
 from ..suite_inputs import ProfileShape
 from ._compare import evaluate
-from ._inputs import (MIN_POINTS, BadInput, bad_input, load_callable, read_fields_csv,
-                      read_scalars_jsonl)
+from ._inputs import load_callable, read_scalars_jsonl
 from ._point import point_from_args
 from ._quantities import ALL_KEYS
 from ._reference import reference_for
@@ -52,18 +52,15 @@ def run(args) -> int:
     try:
         return _run(args)
     except BadInput as exc:
-        raise _errors.BadInput(_short(exc)) from None
+        raise BadInput(_short(exc)) from None
 
 
 def _run(args) -> int:
-    """`run`, raising verify's own BadInput."""
+    """`run`, its messages of bad input at any length."""
     tols, rtol, rtol_given = _tolerance_options(args)
     point, case, si = point_from_args(args)
     nodes, cells = _resolutions(args)
-    try:  # before any work, as point and sweep check theirs
-        check_output_dir("--out", args.out, create=False)
-    except _errors.BadInput as exc:
-        raise _errors.BadInput(_short(exc)) from None
+    check_output_dir("--out", args.out, create=False)  # before any work, as point, sweep do
     inputs = {}
     shape = ProfileShape(point, base="/")
     if args.fields:
@@ -79,13 +76,13 @@ def _run(args) -> int:
         ev = evaluate(results, ref, rtol=rtol, tol=tols, rtol_given=rtol_given,
                       si=si is not None)
     except RuntimeError as exc:
-        raise _errors.Failed(_short(exc)) from None
+        raise Failed(_short(exc)) from None
     try:
         write_report(args.out, ev, point, ref, results, label, inputs, case,
                      figures=not args.no_figures)
     except OSError as exc:
-        raise _errors.Failed(_short(f"--out {args.out}: cannot write the report "
-                                    f"({exc.strerror or exc})")) from None
+        raise Failed(_short(f"--out {args.out}: cannot write the report "
+                            f"({exc.strerror or exc})")) from None
     _print_verdict(ev)
     failed = f" ({', '.join(ev['failed'])})" if ev["failed"] else ""
     summary = f"verify: {ev['verdict']}{failed}; report in {os.path.join(args.out, 'report.md')}"
@@ -227,14 +224,11 @@ def _solve(call, n, label):
     """The solver under test's output at N = n; its failure is its verdict (Failed)."""
     try:
         obj = call(n)
-    except BadInput:
-        raise
     except Exception as exc:  # the solver under test failed: its verdict, not ours
-        raise _errors.Failed(_short(f"{label} failed at N = {n}: {type(exc).__name__}: "
-                                    f"{exc}")) from None
+        raise Failed(_short(f"{label} failed at N = {n}: {type(exc).__name__}: {exc}")) from None
     if getattr(obj, "success", True) is False:
-        raise _errors.Failed(_short(f"{label} did not converge at N = {n}: "
-                                    f"{getattr(obj, 'message', '')}"))
+        raise Failed(_short(f"{label} did not converge at N = {n}: "
+                            f"{getattr(obj, 'message', '')}"))
     return obj
 
 

@@ -7,7 +7,8 @@ from pathlib import Path
 
 from .. import roads
 from .. import suite as _suite
-from ._inputs import BadInput, bad_input, read_text
+from .._errors import BadInput, bad_input
+from .._io import read_text
 
 
 def point_from_case(name):
@@ -60,7 +61,7 @@ def check_point(point, option_prefix="--"):
     for k, reader in (("profile", roads.read_profile), ("prony", roads.read_prony)):
         if point.get(k):
             path = point[k]
-            read_text(path, "--" + k, f"a {k} file (see bem.read_{k})")
+            read_text("--" + k, path, f"a {k} file (see bem.read_{k})")
             try:
                 reader(path)
             except ValueError as exc:

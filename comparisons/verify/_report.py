@@ -17,7 +17,7 @@ import numpy as np
 import viscosine
 
 from .. import _html
-from .._io import write_text
+from .._io import jsonable, write_text
 from ..fields import wrap
 from ..plots import materials as _materials_plots
 from ..plots import verify as _plots
@@ -201,21 +201,6 @@ SCALARS_FROM_FIELDS = (
     "kê = arg(ŷ_n/σ̂_n)/n in the profile's dominant mode.")
 
 
-def _jsonable(o):
-    """``o`` with NumPy scalars as Python's and non-finite floats as None (JSON null)."""
-    if isinstance(o, dict):
-        return {k: _jsonable(v) for k, v in o.items()}
-    if isinstance(o, (list, tuple)):
-        return [_jsonable(v) for v in o]
-    if isinstance(o, (np.floating, float)):
-        return float(o) if math.isfinite(o) else None
-    if isinstance(o, (np.integer,)):
-        return int(o)
-    if isinstance(o, np.bool_):
-        return bool(o)
-    return o
-
-
 def write_report(folder, ev, point, reference, results, label, inputs, case=None,
                  figures=True):
     """Write report.md, report.html (offline) and verdict.json into ``folder``."""
@@ -237,5 +222,5 @@ def write_report(folder, ev, point, reference, results, label, inputs, case=None
            "results": [{"nodes": r.nodes, "source": r.source, "scalars": r.scalars,
                         "estimated_errors": r.errors, "patches": r.patches} for r in results]}
     write_text(Path(folder) / "verdict.json",
-               json.dumps(_jsonable(doc), indent=1, ensure_ascii=False, allow_nan=False) + "\n")
+               json.dumps(jsonable(doc), indent=1, ensure_ascii=False, allow_nan=False) + "\n")
 

@@ -27,9 +27,9 @@ from viscosine import Fields
 from viscosine._fields import WIDTH
 
 from .. import suite as _suite
-from ..fields import bem_fields
+from .._errors import bad_input
+from ..fields import MIN_POINTS, bem_fields, check_grid
 from ..peers.tamaas import CELLS_PER_STEP as DEFAULT_DT_CELLS  # --peer tamaas: its dt ladder
-from ._inputs import MIN_POINTS, bad_input, check_grid
 from ._quantities import COMPARED_KEYS
 from ._scalars import scalars_from_fields
 

@@ -21,9 +21,8 @@ import warnings
 import numpy as np
 
 from .. import suite as _suite
-from ..fields import as_grid, bem_fields
+from ..fields import MIN_POINTS, as_grid, bem_fields
 from ..suite_inputs import ProfileShape
-from ._inputs import MIN_POINTS
 from ._quantities import COMPARED_KEYS, LABELS, edge_differences, measure, norms
 from ._reference import reference_for
 from ._results import results_from_fields, viscosine_bem
