@@ -11,7 +11,7 @@ V/V0 = Vτk, ratio E∞/E0, hk = h k.
 """
 from __future__ import annotations
 
-from viscosine._checks import at_most_one_control, check_reals
+from viscosine.checks import at_most_one_control, check_reals
 
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is Westergaard's solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30

@@ -13,7 +13,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from viscosine import Fields
-from viscosine._protocol import SCALAR_KEYS, Patch, _plain, record
+from viscosine.protocol import SCALAR_KEYS, Patch, plain, record
 
 from . import _kernels as K
 from ._closure import State
@@ -120,7 +120,7 @@ class Solution:
 
     def scalars(self):
         """The eight scalars of the conventions (plain Python types, None where null)."""
-        return {k: _plain(getattr(self, k)) for k in SCALAR_KEYS}
+        return {k: plain(getattr(self, k)) for k in SCALAR_KEYS}
 
     def as_dict(self):
         """The JSON record (serialisable with ``allow_nan=False``; non-finite values are None)."""

@@ -1,13 +1,13 @@
 """A thin SI front: dimensional inputs in, the same results in SI out.
 
-Nothing here solves anything: `viscosine._si.scales` turns the SI inputs into the dimensionless
+Nothing here solves anything: `viscosine.si.scales` turns the SI inputs into the dimensionless
 groups (load p̃∞ = p∞(1 − ν²)/E0, speed V τ k, ratio E∞/E0, hk), `solver.solve` does the work
-and `viscosine._si.result` scales the outputs back.  Natural units: lengths 1/k = λ/(2π),
+and `viscosine.si.result` scales the outputs back.  Natural units: lengths 1/k = λ/(2π),
 stresses E0/(1 − ν²), times τ.
 """
 from __future__ import annotations
 
-from viscosine import _si
+from viscosine import si
 
 from . import solver
 from ._accepted import ACCEPTED
@@ -49,12 +49,12 @@ def solve_si(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_press
         An SI input that is invalid or whose dimensionless group lies outside
         `analytic.ACCEPTED` (named by the SI parameter it comes from).
     """
-    sc = _si.scales(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax, nu=nu,
+    sc = si.scales(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax, nu=nu,
                     wavelength=wavelength, amplitude=amplitude, speed=speed,
                     mean_pressure=mean_pressure, penetration=penetration)
-    groups = _si.groups(sc, solver.validate, ACCEPTED)
+    groups = si.groups(sc, solver.validate, ACCEPTED)
     sol = solver.solve(**groups)
     vth = threshold_speed(sol.load, sc.ratio, sc.hk) if sol.success else None
-    return _si.result(sol, sc, full_contact_load=transition_load(sc.speed, sc.ratio, sc.hk),
+    return si.result(sol, sc, full_contact_load=transition_load(sc.speed, sc.ratio, sc.hk),
                       threshold_speed=vth)
 

@@ -80,7 +80,7 @@ from scipy import linalg
 from scipy.optimize import brentq, minimize_scalar
 from scipy.special import dawsn
 
-from viscosine._checks import bad, integer, is_integer, real, series
+from viscosine.checks import bad, integer, is_integer, real, series
 
 _TWO_PI = 2.0 * math.pi
 

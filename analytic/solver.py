@@ -16,7 +16,7 @@ import math
 import numpy as np
 from scipy.optimize import brentq
 
-from viscosine import _table
+from viscosine import table
 
 from . import _kernels as K
 from ._accepted import ACCEPTED, validate
@@ -279,9 +279,9 @@ def sweep(*, load=None, penetration=None, speed, ratio=3.0, hk=1.0):
     Returns
     -------
     dict of ndarray
-        The table of `viscosine._table.sweep`: inputs, ``success``, the eight scalars (NaN where
+        The table of `viscosine.table.sweep`: inputs, ``success``, the eight scalars (NaN where
         null), separation, max_pressure, x_max_pressure, n_patches and ``message``.  Bad input
         raises ValueError before any point is solved; a failing point is a row with success False.
     """
-    return _table.sweep(solve, validate, load=load, penetration=penetration, speed=speed,
+    return table.sweep(solve, validate, load=load, penetration=penetration, speed=speed,
                         ratio=ratio, hk=hk)

@@ -26,8 +26,8 @@ protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
 it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.
 """
 from viscosine import Fields
-from viscosine._checks import positive_int as _positive_int
-from viscosine._checks import real as _real
+from viscosine.checks import positive_int as _positive_int
+from viscosine.checks import real as _real
 
 from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._front import solve_si, sweep

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import os
 
-from viscosine._checks import at_most_one_control, bad, check_reals, integer, real
+from viscosine.checks import at_most_one_control, bad, check_reals, integer, real
 
 #: speeds in (0, SPEED_MIN) and above SPEED_MAX are refused; 0 is the elastic (relaxed) solution
 SPEED_MIN, SPEED_MAX = 1e-30, 1e30

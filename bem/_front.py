@@ -1,13 +1,13 @@
 """The BEM road's fronts: sweeps as tables and the SI front, thin loops and scalings around
-`bem.solve` through the shared `viscosine._table` and `viscosine._si` (nothing here solves).
+`bem.solve` through the shared `viscosine.table` and `viscosine.si` (nothing here solves).
 """
 from __future__ import annotations
 
 import math
 import warnings
 
-from viscosine import _si, _table
-from viscosine._checks import real, reals
+from viscosine import si, table
+from viscosine.checks import real, reals
 
 from . import _solver
 from ._accepted import ACCEPTED, validate
@@ -31,12 +31,12 @@ def sweep(*, load=None, penetration=None, speed, errors=False, **options):
     Returns
     -------
     dict of ndarray
-        The table of `viscosine._table.sweep` (inputs, ``success``, the scalars, NaN where
+        The table of `viscosine.table.sweep` (inputs, ``success``, the scalars, NaN where
         null, separation, max_pressure, x_max_pressure, n_patches, ``message``) plus ``nodes``.
         Bad input raises ValueError before any point is solved; a failing point is a row with
         success False.
     """
-    return _table.sweep(_solver.solve, validate, load=load, penetration=penetration,
+    return table.sweep(_solver.solve, validate, load=load, penetration=penetration,
                         speed=speed, errors=errors, extra=("nodes",), **options)
 
 
@@ -118,14 +118,14 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         text = model.extrapolation_warning(sc.speed, sc.speed * max(1, top))
         if text is not None:
             warnings.warn(text, UserWarning, stacklevel=2)
-    return _si.result(sol, sc, full_contact_load=pfc, threshold_speed=None)
+    return si.result(sol, sc, full_contact_load=pfc, threshold_speed=None)
 
 
 def _bem_groups(sc, profile, prony):
     """The keyword arguments of `bem.solve` for the SI problem ``sc``, each checked against
     `bem.ACCEPTED`: the dimensionless groups, ``profile`` (when sampled) in place of hk, and
     ``prony`` (a Maxwell series' creep function) in place of the solid's ratio."""
-    groups = _si.groups(sc, validate, ACCEPTED, with_hk=("load",))
+    groups = si.groups(sc, validate, ACCEPTED, with_hk=("load",))
     if profile is not None:
         del groups["hk"]
         groups["profile"] = profile
@@ -156,7 +156,7 @@ def _si_material(material, sls, problem):
     (E0, Einf and one of its times, eq. 2.3).  ``problem``: the SI inputs the scales take
     besides (nu, wavelength, amplitude, speed, mean_pressure, penetration)."""
     if material is None:
-        sc = _si.scales(**sls, **problem)
+        sc = si.scales(**sls, **problem)
         return None, sc, Prony.standard_linear_solid(sc.ratio)
     from viscosine.materials import Maxwell
     given = {k: v for k, v in sls.items() if v is not None}
@@ -169,5 +169,5 @@ def _si_material(material, sls, problem):
                          "viscosine.materials.Maxwell (moduli in Pa, times in s, or a DMA "
                          "fit whose data name their modulus unit)")
     model = material.in_pascals()
-    sc = _si.material_scales(E_ref=model.E_r, tau_ref=1.0, **problem)
+    sc = si.material_scales(E_ref=model.E_r, tau_ref=1.0, **problem)
     return model, sc, Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0))

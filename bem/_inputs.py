@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 
-from viscosine._checks import bad, real, reals, series
+from viscosine.checks import bad, real, reals, series
 
 
 # --------------------------------------------------------------------------

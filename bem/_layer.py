@@ -38,9 +38,12 @@ the bonded case here).
 """
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+
 import numpy as np
 
-from viscosine._checks import bad, real, reals
+from viscosine.checks import bad, real, reals
 
 #: the lower boundaries a layer may have
 FOUNDATIONS = ("bonded", "frictionless")
@@ -191,3 +194,139 @@ def uniform_compliance(nu, foundation, lateral="free"):
     if foundation == "frictionless" and lateral == "free":
         return 1.0
     return (1.0 - 2.0 * nu) / ((1.0 - nu) * (1.0 - nu))
+
+
+# --------------------------------------------------------------------------
+# The layer of a solve: its input, its operator, its uniform mode
+# --------------------------------------------------------------------------
+#: the thinnest layer a solve takes, kd: the operator sums the modes |m| < _T_ONE/kd (2.5e5
+#: here) and the mesh must resolve d (`MIN_LAYER_PANELS` panels at N/4: N >= 1e6 here)
+THICKNESS_MIN = 1e-4
+#: the adaptive mesh trusts its estimate only once d spans this many panels on the coarsest
+#: grid of the estimate (N/4): d is a length of the solution (the pressure varies over d at
+#: the contact edges of a thin layer), which the grids must see before their differences do
+MIN_LAYER_PANELS = 4.0
+
+
+@dataclass(frozen=True)
+class Layer:
+    """A layer of thickness d on a rigid foundation, under the profile (`bem.solve(layer=...)`).
+
+    Give exactly one of ``thickness`` (k d, k = 2 pi/lambda) and ``thickness_over_wavelength``
+    (d/lambda); both are kept, the other made from the given one.
+
+    Parameters
+    ----------
+    thickness : float, optional
+        k d, in ``[THICKNESS_MIN, inf)`` (finite; ``layer=None`` is the half-space).  From
+        k d = 25 on the layer factor of every mode is 1 exactly: the half-space's answer.
+    thickness_over_wavelength : float, optional
+        d/lambda (k d / 2 pi).
+    foundation : {"bonded", "frictionless"}
+        The lower boundary: bonded (u_x = u_z = 0), or lying without friction (u_z = 0).
+    nu : float
+        Poisson ratio in (-1, 0.5], constant in time (only E depends on the frequency).
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter: a thickness not finite or below THICKNESS_MIN (or both, or
+        neither, given), an unknown foundation, nu outside (-1, 0.5].
+    """
+
+    thickness: float | None = None
+    foundation: str | None = None
+    nu: float | None = None
+    thickness_over_wavelength: float | None = None
+
+    def __post_init__(self):
+        two_pi = 2.0 * math.pi
+        allowed = (f"a finite thickness k d >= {THICKNESS_MIN:g} (k = 2 pi/lambda; "
+                   "layer=None for the half-space)")
+        if (self.thickness is None) == (self.thickness_over_wavelength is None):
+            raise bad("thickness", self.thickness, "exactly one of thickness (k d) and "
+                      "thickness_over_wavelength (d/lambda) (got thickness="
+                      f"{self.thickness!r}, thickness_over_wavelength="
+                      f"{self.thickness_over_wavelength!r})")
+        if self.thickness is not None:
+            kd = real("thickness", self.thickness, allowed, lambda v: v >= THICKNESS_MIN,
+                      kind=True)
+        else:
+            dl = real("thickness_over_wavelength", self.thickness_over_wavelength,
+                      f"a finite d/lambda >= {THICKNESS_MIN / two_pi:g}",
+                      lambda v: v * two_pi >= THICKNESS_MIN, kind=True)
+            kd = two_pi * dl
+        object.__setattr__(self, "foundation", _check_foundation(self.foundation))
+        object.__setattr__(self, "nu", _check_nu(self.nu))
+        object.__setattr__(self, "thickness", kd)
+        object.__setattr__(self, "thickness_over_wavelength", kd / two_pi)
+
+    @property
+    def uniform(self) -> float:
+        """C of `uniform_compliance` (``lateral="free"``: the limit of the modes)."""
+        return uniform_compliance(self.nu, self.foundation)
+
+    def factor(self, modes) -> np.ndarray:
+        """S(|n| k d) of the modes n (an array; 1 exactly from |n| k d = 25 on)."""
+        return layer_factor(np.abs(np.asarray(modes, dtype=float)) * self.thickness, self.nu,
+                            self.foundation)
+
+    def describe(self) -> dict:
+        """The layer as plain numbers (for the result's diagnostics)."""
+        return {"thickness": self.thickness,
+                "thickness_over_wavelength": self.thickness_over_wavelength,
+                "foundation": self.foundation, "nu": self.nu, "uniform_compliance": self.uniform}
+
+
+def continuum_symbol(modes, j_plus, terms, speed, nodes, shifts) -> np.ndarray:
+    """The continuum symbol of the modes m != 0 of the panel operator, with the panel factor:
+    ``(2/|m|) sinc(pi m/N) [J(0+) + sum_i J_i exp(-2 pi i m delta_i)/(1 - i m w tau_i)]``.
+
+    The discrete symbol (``rfft`` of the column of `_influence.influence_coefficients_nd`) is
+    its alias sum over ``m = n + p N``; ``delta_i`` (wavelengths) is term i's collocation shift
+    (`_influence.collocation_shifts`: its memory part is sampled at ``X - delta_i``).  A term
+    with no memory (speed 0) acts at once.
+    """
+    m = np.asarray(modes, dtype=float)
+    js = np.full(m.shape, j_plus, dtype=complex)
+    for (j_i, tau_i), delta in zip(terms, shifts):
+        if j_i == 0.0:
+            continue
+        length = speed * tau_i / (2.0 * math.pi)
+        if length == 0.0:
+            js += j_i
+            continue
+        phase = np.exp(-2j * math.pi * m * delta) if delta > 0.0 else 1.0
+        js += j_i * phase / (1.0 - 1j * m * speed * tau_i)
+    return (2.0 / np.abs(m)) * np.sinc(m / nodes) * js
+
+
+def symbol_correction(layer: Layer, j_plus, terms, speed, nodes, shifts):
+    """What the layer adds to the half-space's discrete symbol (``rfft`` modes 0 .. N/2):
+    ``sum_p (S(|n + p N| k d) - 1) chat(n + p N)`` with `continuum_symbol` chat, over the modes
+    ``|n + p N| k d < 25`` (beyond, S = 1 exactly).  None when no mode sees the layer (k d >= 25:
+    the operator is the half-space's, bit for bit).
+
+    Mode n of the continuum operator with a layer is the half-space's times S (``docs/layers.md``
+    §1); the discrete symbol of panel collocation is the alias sum of the continuum one, so
+    the half-space's (made in real space) plus this sum is the layer's.
+    """
+    top = int(math.ceil(_T_ONE / layer.thickness))  # |m| < top may have S < 1
+    m = np.arange(-top, top + 1, dtype=np.int64)
+    m = m[(m != 0) & (np.abs(m) * layer.thickness < _T_ONE)]
+    if m.size == 0:
+        return None
+    bins = m % nodes
+    keep = bins <= nodes // 2
+    m, bins = m[keep], bins[keep]
+    weight = layer.factor(m) - 1.0
+    out = np.zeros(nodes // 2 + 1, dtype=complex)
+    np.add.at(out, bins, weight * continuum_symbol(m, j_plus, terms, speed, nodes, shifts))
+    return out
+
+
+def mean_displacement(layer: Layer, j0: float, load: float) -> float:
+    """k v^_0: the layer's uniform compression under the mean pressure (units of :mod:`bem`),
+    ``C (k d) J0 sigma^_0`` with the relaxed compliance J0 (the mean pressure is static in the
+    frame of the indenter) and C of `uniform_compliance` (``lateral="free"``)."""
+    return layer.uniform * layer.thickness * j0 * load

@@ -9,8 +9,8 @@ from typing import Any, Mapping
 
 import numpy as np
 
-from viscosine import Fields, _protocol
-from viscosine._protocol import SCALAR_KEYS, _plain
+from viscosine import Fields, protocol
+from viscosine.protocol import SCALAR_KEYS, plain
 
 #: BemResult.status: one name per outcome (as scipy.optimize's status codes), and MESSAGES says
 #: what each means.  The solver's messages add the particulars (residuals, grids, estimates).
@@ -34,7 +34,7 @@ WINDOW_FAILED = 6
 
 
 @dataclass(frozen=True)
-class Patch(_protocol.Patch):
+class Patch(protocol.Patch):
     """One contact patch (positions x/λ, crest at 0): the protocol's patch plus its panels.
 
     Attributes
@@ -227,7 +227,7 @@ class BemResult:
         inputs = {"nodes": self.nodes}
         if self.rtol is not None:
             inputs["rtol"] = self.rtol
-        return _protocol.record(self, "bem", inputs=inputs,
+        return protocol.record(self, "bem", inputs=inputs,
                                 error_estimate=None if self.error_estimate is None
                                 else dict(self.error_estimate))
 
@@ -266,4 +266,4 @@ class BemResult:
 
     def scalars(self) -> dict:
         """The eight scalars of the conventions (plain Python types, None where null)."""
-        return {k: _plain(getattr(self, k)) for k in SCALAR_KEYS}
+        return {k: plain(getattr(self, k)) for k in SCALAR_KEYS}

@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from viscosine import DEFAULT_RTOL, ViscosineWarning
-from viscosine._checks import bad, positive_int, real
+from viscosine.checks import bad, positive_int, real
 
 from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._assemble import build_result

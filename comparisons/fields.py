@@ -12,7 +12,7 @@ import os
 import numpy as np
 
 from viscosine import Fields
-from viscosine._fields import UNIFORM_SPACING, WIDTH
+from viscosine.fields import UNIFORM_SPACING, WIDTH
 
 from ._errors import bad_input
 from ._io import read_text, temporary_name

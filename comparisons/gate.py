@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from viscosine._protocol import SCALAR_KEYS
+from viscosine.protocol import SCALAR_KEYS
 
 from ._errors import one_line
 

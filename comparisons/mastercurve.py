@@ -212,7 +212,7 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
     Returns ``([(T, V, log10 a_T, spec), ...], parameters)``; raises ValueError (one line).
     """
     from viscosine import materials as vm
-    from viscosine._checks import real
+    from viscosine.checks import real
 
     from . import _materials, runner
     temps = [real("temperature", t, "a finite temperature") for t in temperatures]

@@ -99,9 +99,9 @@ def accepted(solver):
 
 
 def si_groups(solver, scales):
-    """The dimensionless groups of the SI problem ``scales`` (`viscosine._si.groups`), each
+    """The dimensionless groups of the SI problem ``scales`` (`viscosine.si.groups`), each
     checked by the road's own ``validate`` (ValueError naming the SI input)."""
-    from viscosine import _si
+    from viscosine import si
     return _si.groups(scales, _road(solver).validate, accepted(solver),
                       with_hk=("load",) if solver == "bem" else ())
 

@@ -182,7 +182,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
     Parameters
     ----------
     si : dict
-        The SI options given (keywords of `viscosine._si`, None = not given): ``nu``,
+        The SI options given (keywords of `viscosine.si`, None = not given): ``nu``,
         ``wavelength``, ``amplitude`` always; the standard linear solid's ``E0``, ``Einf`` and
         one time (``tau_creep``, alias ``tau``, or ``tau_relax``) unless ``material`` is given.
     loads, penetrations : list of float
@@ -205,7 +205,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
         A missing, extra or invalid SI option, or a group outside the road's accepted range,
         named by the option the user typed.
     """
-    from viscosine import _si
+    from viscosine import si
     given = {k: v for k, v in si.items() if v is not None}
     need = ["nu", "wavelength", "amplitude"]
     if material is None:
@@ -268,7 +268,7 @@ def si_block(rec, info):
     """The record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``."""
     from types import SimpleNamespace
 
-    from viscosine import _si
+    from viscosine import si
     lam, h = info["wavelength"], info["amplitude"]
     k = 2.0 * math.pi / lam
     sc = _si.SIScales(None, h * k, rec["speed"], rec.get("load"), rec.get("penetration"), k,
@@ -358,7 +358,7 @@ def validate(spec):
 
 
 def _check_int(name, value, low, high, what):
-    from viscosine._checks import integer
+    from viscosine.checks import integer
     try:
         integer(name, value, f"an integer in [{low}, {high}] ({what})", lambda v: low <= v <= high)
     except ValueError as exc:

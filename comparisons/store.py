@@ -22,7 +22,7 @@ import sys
 import numpy as np
 
 from viscosine import Fields
-from viscosine._fields import WIDTH  # the cells of a non-uniform grid (optional)
+from viscosine.fields import WIDTH  # the cells of a non-uniform grid (optional)
 
 from . import gate, runner
 from ._errors import StoreError, one_line

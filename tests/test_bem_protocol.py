@@ -17,7 +17,7 @@ from bem import _assemble
 from bem._accepted import (HK_MAX, HK_MIN, LOAD_OVER_AMPLITUDE, PENETRATION_MIN, RATIO_EPS,
                            RATIO_MAX, SPEED_MAX, SPEED_MIN)
 from viscosine import Fields
-from viscosine._protocol import SCALAR_KEYS
+from viscosine.protocol import SCALAR_KEYS
 
 N = 512
 TWO_HARMONICS = bem.Harmonics([1.0, 0.0, 0.0, 0.6], [0.0, 0.0, 0.0, 0.0])

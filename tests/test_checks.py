@@ -1,4 +1,4 @@
-"""One input validator for the whole project (viscosine._checks): a real input is a real number
+"""One input validator for the whole project (viscosine.checks): a real input is a real number
 that is not a bool; every refusal is one line "name=value is not allowed: what is allowed".  The
 same bad values are refused, naming the parameter, by every front that takes reals."""
 import math
@@ -8,7 +8,7 @@ import pytest
 
 import analytic
 import bem
-from viscosine import _checks
+from viscosine import checks
 from viscosine import materials as vm
 
 #: not a real number, or not finite: refused wherever a real is asked for
@@ -33,63 +33,63 @@ def _refused(call, name, value):
     ([1.0], False), (np.array(1.0), False), (1 + 0j, False),
 ])
 def test_is_real(value, ok):
-    assert _checks.is_real(value) is ok
+    assert checks.is_real(value) is ok
 
 
 def test_refusal_shows_the_value_on_one_line_and_short():
-    assert str(_checks.bad("x", np.float64(0.3), "y")) == "x=0.3 is not allowed: y"
-    assert str(_checks.bad("n", np.int64(7), "y")) == "n=7 is not allowed: y"
-    assert str(_checks.bad("x", np.bool_(True), "y")) == "x=True is not allowed: y"
-    assert str(_checks.bad("x", "a\nb", "y", unit="m")) == "x='a\\nb' is not allowed: y [m]"
-    long = str(_checks.bad("heights", np.arange(1000.0), "y"))
+    assert str(checks.bad("x", np.float64(0.3), "y")) == "x=0.3 is not allowed: y"
+    assert str(checks.bad("n", np.int64(7), "y")) == "n=7 is not allowed: y"
+    assert str(checks.bad("x", np.bool_(True), "y")) == "x=True is not allowed: y"
+    assert str(checks.bad("x", "a\nb", "y", unit="m")) == "x='a\\nb' is not allowed: y [m]"
+    long = str(checks.bad("heights", np.arange(1000.0), "y"))
     assert "\n" not in long and " ... is not allowed: y" in long
-    assert len(long.split(" is not allowed")[0]) == len("heights=") + _checks.SHOWN_MAX
-    assert str(_checks.bad("n", 10 ** 400, "y")).startswith("n=1000")
+    assert len(long.split(" is not allowed")[0]) == len("heights=") + checks.SHOWN_MAX
+    assert str(checks.bad("n", 10 ** 400, "y")).startswith("n=1000")
     path = "/a/long/folder/" * 20 + "profile.csv"  # a file name is shown whole
-    assert str(_checks.bad("profile", path, "y")) == f"profile={path!r} is not allowed: y"
+    assert str(checks.bad("profile", path, "y")) == f"profile={path!r} is not allowed: y"
 
 
 def test_real():
-    assert _checks.real("x", np.float32(0.5), "y") == 0.5
-    assert type(_checks.real("x", np.int64(2), "y")) is float
-    assert _checks.real("x", 2.0, "y", lambda v: v > 1.0) == 2.0
+    assert checks.real("x", np.float32(0.5), "y") == 0.5
+    assert type(checks.real("x", np.int64(2), "y")) is float
+    assert checks.real("x", 2.0, "y", lambda v: v > 1.0) == 2.0
     with pytest.raises(ValueError, match=r"^x=0\.5 is not allowed: y$"):
-        _checks.real("x", 0.5, "y", lambda v: v > 1.0)
+        checks.real("x", 0.5, "y", lambda v: v > 1.0)
     with pytest.raises(ValueError, match=r"^x='1' is not allowed: y \[Pa\]$"):
-        _checks.real("x", "1", "y", unit="Pa")
+        checks.real("x", "1", "y", unit="Pa")
     with pytest.raises(ValueError, match=r"^x=nan is not allowed: a finite number; y$"):
-        _checks.real("x", math.nan, "y", kind=True)
+        checks.real("x", math.nan, "y", kind=True)
     with pytest.raises(ValueError, match=r"^x=True is not allowed: a real number; y$"):
-        _checks.real("x", True, "y", kind=True)
+        checks.real("x", True, "y", kind=True)
     with pytest.raises(ValueError, match=r"^x=1000"):
-        _checks.real("x", 10 ** 400, "y")
+        checks.real("x", 10 ** 400, "y")
 
 
 def test_integers():
-    assert _checks.positive_int("n", np.int64(8), 8) == 8
+    assert checks.positive_int("n", np.int64(8), 8) == 8
     for v in (7, 8.0, True, "8", None):
         with pytest.raises(ValueError, match=r"^n=.* is not allowed: an integer >= 8$"):
-            _checks.positive_int("n", v, 8)
-    assert _checks.integer("n", 4, "even", lambda v: v % 2 == 0) == 4
+            checks.positive_int("n", v, 8)
+    assert checks.integer("n", 4, "even", lambda v: v % 2 == 0) == 4
     with pytest.raises(ValueError, match=r"^n=3 is not allowed: even$"):
-        _checks.integer("n", 3, "even", lambda v: v % 2 == 0)
+        checks.integer("n", 3, "even", lambda v: v % 2 == 0)
 
 
 def test_series_and_arrays():
-    assert _checks.series("J", 0.5, "y") == (0.5,)
-    assert _checks.series("J", (), "y") == ()
-    assert _checks.series("J", np.array([1, 2]), "y") == (1.0, 2.0)
-    assert _checks.series("J", [np.float32(0.5), 1], "y", lambda v: v > 0.0) == (0.5, 1.0)
+    assert checks.series("J", 0.5, "y") == (0.5,)
+    assert checks.series("J", (), "y") == ()
+    assert checks.series("J", np.array([1, 2]), "y") == (1.0, 2.0)
+    assert checks.series("J", [np.float32(0.5), 1], "y", lambda v: v > 0.0) == (0.5, 1.0)
     for v in (["0.5"], [True, 1.0], [None], [[1.0], [2.0]], [1.0, math.nan], "0.5", {1.0},
               np.array([True, False])):
         with pytest.raises(ValueError, match=r"^J=.* is not allowed: .*y$"):
-            _checks.series("J", v, "y")
+            checks.series("J", v, "y")
     with pytest.raises(ValueError, match=r"^J=\[-1\.0\] is not allowed: y$"):
-        _checks.series("J", [-1.0], "y", lambda v: v >= 0.0)
+        checks.series("J", [-1.0], "y", lambda v: v >= 0.0)
     a = np.arange(4.0)
-    out = _checks.reals("h", a, "y")
+    out = checks.reals("h", a, "y")
     assert out is not a and np.array_equal(out, a)
-    assert _checks.reals("h", [[1, 2], [3, 4]], "y").shape == (2, 2)
+    assert checks.reals("h", [[1, 2], [3, 4]], "y").shape == (2, 2)
 
 
 # ------------------------------------------------------------------ the fronts, one policy

@@ -12,7 +12,11 @@ Two independent roads solve the same problem and never import each other:
 and :mod:`comparisons` checks one against the other (``python -m comparisons``).
 
 This package holds what both roads share without sharing any numerics: the version, the field
-container :class:`Fields` and the SI result :class:`SIResult`.  ``viscosine.analytic``,
+container :class:`Fields` and the SI result :class:`SIResult`, and the modules the packages build
+on (:mod:`viscosine.checks` the input checks, :mod:`viscosine.protocol` the result protocol,
+:mod:`viscosine.fields`, :mod:`viscosine.si` the SI front, :mod:`viscosine.table` sweeps as
+tables, :mod:`viscosine.materials` relaxation series and master curves): no package reaches into
+another's private modules.  ``viscosine.analytic``,
 ``viscosine.bem`` and ``viscosine.comparisons`` are the three packages themselves (imported on
 first use).
 """
@@ -20,8 +24,8 @@ from __future__ import annotations
 
 import importlib
 
-from ._fields import Fields
-from ._si import SIResult
+from .fields import Fields
+from .si import SIResult
 
 
 class ViscosineWarning(UserWarning):

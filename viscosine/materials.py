@@ -54,7 +54,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ._checks import bad, real, reals, series
+from .checks import bad, real, reals, series
 
 #: fewest points of a DMA curve (and of a shift table's pair of columns) that are accepted
 MIN_POINTS = 5

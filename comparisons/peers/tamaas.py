@@ -68,8 +68,8 @@ import numpy as np
 
 import viscosine
 from viscosine import Fields
-from viscosine._checks import bad, integer, real, series
-from viscosine._protocol import SCALAR_KEYS, Patch, _plain
+from viscosine.checks import bad, integer, real, series
+from viscosine.protocol import SCALAR_KEYS, Patch, plain
 
 from ..convergence import richardson
 from ..fields import true_runs
@@ -216,7 +216,7 @@ class TamaasResult:
 
     def scalars(self):
         """The eight scalars of the conventions (plain Python types, None where null)."""
-        return {k: _plain(getattr(self, k)) for k in SCALAR_KEYS}
+        return {k: plain(getattr(self, k)) for k in SCALAR_KEYS}
 
     def as_dict(self):
         """The JSON record (serialisable with ``allow_nan=False``)."""
@@ -229,7 +229,7 @@ class TamaasResult:
                     "max_pressure": self.max_pressure, "x_max_pressure": self.x_max_pressure,
                     "n_patches": self.n_patches, "patches": [asdict(p) for p in self.patches],
                     "diagnostics": self.diagnostics, "error_estimate": None})
-        return _plain(rec)
+        return plain(rec)
 
     def fields(self, x_over_lambda=None):
         """Pressure, displacement and gap at the last period end.

@@ -42,7 +42,7 @@ import math
 
 import numpy as np
 
-from viscosine._checks import bad, real, reals
+from viscosine.checks import bad, real, reals
 
 from .. import roads
 from . import pyplot, save

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 
-from viscosine._fields import WIDTH
+from viscosine.fields import WIDTH
 
 from ._diagnose import diagnose
 from ._quantities import COMPARED_KEYS, LABELS, REL, edge_differences, measure, norms

@@ -113,7 +113,7 @@ def point_from_args(args):
         raise bad_input("--speed", None, "missing",
                         "--case NAME or --speed with --load/--penetration")
     if args.units == "SI":
-        from viscosine._si import scales
+        from viscosine.si import scales
         if given["profile"] or given["prony"]:
             raise bad_input("--units", "SI", "given with --profile/--prony",
                             "SI operating points for the sinusoid on the standard linear solid")

@@ -10,12 +10,12 @@ from __future__ import annotations
 
 import numpy as np
 
-from viscosine._protocol import SCALAR_KEYS
+from viscosine.protocol import SCALAR_KEYS
 
 from ..fields import as_grid, wrap
 
 #: the scalars verify compares: the numbers among the protocol's scalars
-#: (`viscosine._protocol.SCALAR_KEYS`, all but the flag full_contact) and the controls
+#: (`viscosine.protocol.SCALAR_KEYS`, all but the flag full_contact) and the controls
 #: separation and load; relatively (REL) or in absolute terms (ABS: positions, in radians)
 REL = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction")
 ABS = ("ka", "ke", "ke_hat")

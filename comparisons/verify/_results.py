@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from viscosine import Fields
-from viscosine._fields import WIDTH
+from viscosine.fields import WIDTH
 
 from .. import suite as _suite
 from .._errors import bad_input

@@ -15,8 +15,8 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import real
-from ._fields import Fields
+from .checks import real
+from .fields import Fields
 
 
 @dataclass(frozen=True)

@@ -16,16 +16,16 @@ SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetr
                "mu")
 
 
-def _plain(v, *, keep_nonfinite=False):
+def plain(v, *, keep_nonfinite=False):
     """A JSON-ready copy: numpy scalars as Python, tuples as lists, dict keys as str.
 
     Non-finite floats become None (a record serialisable with ``allow_nan=False``), unless
     ``keep_nonfinite`` (for a checker that must still see them).
     """
     if isinstance(v, dict):
-        return {str(k): _plain(x, keep_nonfinite=keep_nonfinite) for k, x in v.items()}
+        return {str(k): plain(x, keep_nonfinite=keep_nonfinite) for k, x in v.items()}
     if isinstance(v, (list, tuple)):
-        return [_plain(x, keep_nonfinite=keep_nonfinite) for x in v]
+        return [plain(x, keep_nonfinite=keep_nonfinite) for x in v]
     if isinstance(v, (bool, np.bool_)):
         return bool(v)
     if isinstance(v, (int, np.integer)):
@@ -92,4 +92,4 @@ def record(res, solver, *, inputs=None, error_estimate=None) -> dict:
         rec.update({"max_pressure": None, "x_max_pressure": None, "n_patches": 0,
                     "patches": []})
     rec.update({"diagnostics": res.diagnostics, "error_estimate": error_estimate})
-    return _plain(rec)
+    return plain(rec)

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._checks import integer
+from .checks import integer
 
 #: units of the four arrays, by `Fields.units`
 UNITS = {
