@@ -126,3 +126,21 @@ def test_only_the_adapter_calls_the_roads():
             continue
         roads = {t.split(".")[0] for t in _imports(name, path)} & {"bem", "analytic"}
         assert not roads, f"{name} imports {roads}: the roads are called through roads.py"
+
+
+@pytest.mark.parametrize("package", ["bem", "analytic", "comparisons", "viscosine"])
+def test_no_package_imports_another_packages_private_modules(package):
+    for path in (ROOT / package).rglob("*.py"):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in ast.walk(tree):
+            if isinstance(node, ast.ImportFrom) and not node.level and node.module:
+                names = [node.module] + [f"{node.module}.{a.name}" for a in node.names]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            else:
+                continue
+            for name in names:
+                top, _, rest = name.partition(".")
+                if top in ("bem", "analytic", "comparisons", "viscosine") and top != package:
+                    assert not any(p.startswith("_") for p in rest.split(".") if p), \
+                        f"{path.relative_to(ROOT)} imports {name}, private to {top}"
