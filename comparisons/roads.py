@@ -102,7 +102,7 @@ def si_groups(solver, scales):
     """The dimensionless groups of the SI problem ``scales`` (`viscosine.si.groups`), each
     checked by the road's own ``validate`` (ValueError naming the SI input)."""
     from viscosine import si
-    return _si.groups(scales, _road(solver).validate, accepted(solver),
+    return si.groups(scales, _road(solver).validate, accepted(solver),
                       with_hk=("load",) if solver == "bem" else ())
 
 

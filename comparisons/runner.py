@@ -205,7 +205,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
         A missing, extra or invalid SI option, or a group outside the road's accepted range,
         named by the option the user typed.
     """
-    from viscosine import si
+    from viscosine import si as si_front  # `si` is the options' name here
     given = {k: v for k, v in si.items() if v is not None}
     need = ["nu", "wavelength", "amplitude"]
     if material is None:
@@ -228,12 +228,12 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
     def scales(value, speed):
         try:
             if material is None:
-                sc = _si.scales(**{k: given.get(k) for k in ("E0", "Einf", "tau", "tau_creep",
+                sc = si_front.scales(**{k: given.get(k) for k in ("E0", "Einf", "tau", "tau_creep",
                                                               "tau_relax")},
                                 nu=given["nu"], wavelength=given["wavelength"],
                                 amplitude=given["amplitude"], speed=speed, **{control: value})
             else:
-                sc = _si.material_scales(E_ref=material.info["E_ref"], tau_ref=1.0,
+                sc = si_front.material_scales(E_ref=material.info["E_ref"], tau_ref=1.0,
                                          nu=given["nu"], wavelength=given["wavelength"],
                                          amplitude=given["amplitude"], speed=speed,
                                          **{control: value})
@@ -268,14 +268,14 @@ def si_block(rec, info):
     """The record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``."""
     from types import SimpleNamespace
 
-    from viscosine import si
+    from viscosine import si as si_front  # `si` is the options' name here
     lam, h = info["wavelength"], info["amplitude"]
     k = 2.0 * math.pi / lam
-    sc = _si.SIScales(None, h * k, rec["speed"], rec.get("load"), rec.get("penetration"), k,
+    sc = si_front.SIScales(None, h * k, rec["speed"], rec.get("load"), rec.get("penetration"), k,
                       info["plane_strain_modulus"], lam, h, info["tau_ref"], {})
     keys = ("success", "message", "full_contact", "ka", "ke", "ke_hat", "penetration",
             "separation", "load", "tau_f", "mu", "max_pressure", "x_max_pressure")
-    r = _si.result(SimpleNamespace(**{k_: rec.get(k_) for k_ in keys}), sc)
+    r = si_front.result(SimpleNamespace(**{k_: rec.get(k_) for k_ in keys}), sc)
     out = {name: getattr(r, name) for name in (
         "contact_halfwidth", "eccentricity", "pressure_eccentricity", "penetration",
         "mean_separation", "mean_pressure", "friction_stress", "friction_coefficient",
