@@ -53,6 +53,8 @@ _SHARED_BANDS = ((2, 32), (32, 16), (256, 8), (8192, 6), (None, 4))
 SAWTOOTH_RATIO = 0.3
 #: above this a = h/L the weight e^(-a t) is treated as e^(-a t) on [0, inf)
 _A_LAGUERRE = 120.0
+#: exp(-x) is exactly 0.0 in double precision for x above this (below the smallest subnormal)
+_EXP_UNDERFLOW = 746.0
 
 
 #: the two halves of an interval with a kink of c at its middle: (start, end, kink at the end)
@@ -301,8 +303,11 @@ def window_memory_coefficients(nodes: int, length: float, first: int, count: int
         sources = window_sources(nodes, first, count)
     lo = -(d + 1)
     src = sources(a)  # signed offsets lo .. d
-    offs = np.arange(lo, d + 1, dtype=float)
-    image = float(np.dot(np.exp(-a * (nodes + offs - d - 1)), src))
+    if a * (nodes + lo - d - 1) > _EXP_UNDERFLOW:
+        image = 0.0  # every weight q^(N + m - D - 1) underflows to 0: the same sum, unmade
+    else:
+        offs = np.arange(lo, d + 1, dtype=float)
+        image = float(np.dot(np.exp(-a * (nodes + offs - d - 1)), src))
     x0 = (d + 1) * h
     smooth = _smooth_memory_integral(x0, 1.0 - x0, length, nodes) / h
     e = (smooth + image) / -math.expm1(-a * nodes)  # E_(d+1)
