@@ -23,7 +23,9 @@ The public shape is the semi-analytic road's: ``solve`` returns a `BemResult` wi
 protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
 ``error_estimate``); ``sweep`` tabulates a grid of points; ``solve_si`` takes SI data;
 ``ACCEPTED`` lists the range of every input and why, ``validate`` checks them (``solve`` calls
-it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.
+it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.  ``solve(...,
+layer=Layer(thickness=k d, foundation=..., nu=...))`` puts a layer on a rigid foundation in place
+of the half-space (``docs/layers.md``).
 """
 from viscosine import Fields
 from viscosine.checks import positive_int as _positive_int
@@ -33,6 +35,7 @@ from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._front import solve_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
+from ._layer import Layer
 from ._result import MESSAGES, BemResult, Patch
 from ._solver import solve
 
@@ -63,6 +66,6 @@ def influence_coefficients(material, speed, nodes):
     return _coefficients(material.j_plus, material.terms, speed, nodes)
 
 
-__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "MAX_NODES", "MESSAGES", "Patch", "Prony",
-           "SampledProfile", "Sinusoid", "influence_coefficients", "read_profile", "read_prony",
-           "solve", "solve_si", "sweep", "validate"]
+__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES", "MESSAGES", "Patch",
+           "Prony", "SampledProfile", "Sinusoid", "influence_coefficients", "read_profile",
+           "read_prony", "solve", "solve_si", "sweep", "validate"]

@@ -13,6 +13,7 @@ import numpy as np
 
 from . import _kernels
 from ._inputs import Prony, Sinusoid, _direct
+from ._layer import mean_displacement
 from ._operator import WindowOperator
 from ._result import CONVERGED, STATUS_INVALID, STATUS_TARGET, BemResult, Patch
 
@@ -389,7 +390,7 @@ def _spectra(sigma, y):
     return sh, yh, modes, weight
 
 
-def _friction(sigma, y, material: Prony, speed: float, spectra=None):
+def _friction(sigma, y, material: Prony, speed: float, spectra=None, layer=None):
     """(dissipation estimate, direct estimate) of tau_f (1 - nu^2)/E_ref.
 
     tau_f = (1/lambda) int sigma dv/dx dx in the paper (eq. 3.1), negative when it
@@ -404,10 +405,13 @@ def _friction(sigma, y, material: Prony, speed: float, spectra=None):
     average); hence sigma_n = DFT_n * sinc(pi n/N).  The direct estimate
     -(1/2 pi) int sigma d(ky)/dX dX = sum_{n>0} 2 n Im(conj(sigma_n) y_n) uses the
     profile instead of v (equal on the contact).  ``spectra``: `_spectra` of the same
-    sigma and y, when already made.
+    sigma and y, when already made.  On a ``layer`` (a `bem.Layer`) mode n dissipates
+    S(|n| k d) times as much (its compliance is the half-space's times S).
     """
     sh, yh, modes, weight = _spectra(sigma, y) if spectra is None else spectra
     jim = material.jstar(modes, speed).imag
+    if layer is not None:
+        jim = jim * layer.factor(modes)
     diss = float(np.sum(weight * 4.0 * jim * np.abs(sh) ** 2))
     direct = float(np.sum(weight * 2.0 * modes * np.imag(np.conj(sh) * yh)))
     return diss, direct
@@ -562,7 +566,7 @@ def _problems(sc, fields, load, asked_load, gap_roundoff=ROUNDOFF):
 
 
 def build_result(res, grid, profile, material, speed, amp, load, history, *, asked, control,
-                 error_estimate=None, rtol=None, extra_diagnostics=None):
+                 error_estimate=None, rtol=None, extra_diagnostics=None, on_layer=None):
     """The `BemResult` of a solved grid, and the last physical-validity gate.
 
     Parameters
@@ -587,6 +591,9 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         The accuracy target of an adaptive mesh (None when the mesh was fixed).
     extra_diagnostics : mapping, optional
         Anything else the solver reports (added to ``diagnostics``).
+    on_layer : bem.Layer, optional
+        The layer under the profile (None: the half-space): ``diagnostics["layer"]`` then describes it and gives the
+        indenter's absolute approach (`_layer_diagnostics`).
 
     Returns
     -------
@@ -617,6 +624,10 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         res, n, residuals, sc, {"pressure": p_out, "displacement": disp, "gap": gap_out}, load,
         ROUNDOFF * (grid.scale / amp), layer, full, warnings)
     ratio = getattr(material, "ratio", None)
+    if on_layer is not None:
+        extra_diagnostics = dict(extra_diagnostics or {})
+        extra_diagnostics["layer"] = _layer_diagnostics(on_layer, material, mean_p, amp,
+                                                        penetration)
     return BemResult(
         success=success, status=status, message=message, nit=int(res["nit"]),
         inner_iterations=tuple(res["inner"]), residuals=residuals, nodes=n, speed=speed,
@@ -631,6 +642,15 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         extra_diagnostics=dict(extra_diagnostics or {}), edges=edges)
 
 
+def _layer_diagnostics(layer, material, mean_p, amp, penetration):
+    """The layer (`bem.Layer.describe`) with its uniform mode (``docs/layers.md``, "The
+    indenter's approach"): ``mean_displacement`` the mean surface displacement over h (the
+    uniform compression under the mean pressure, relaxed compliance J0) and ``approach`` the
+    indenter's approach into the layer from the undeformed top face, over h: Δ/h plus it."""
+    mean = mean_displacement(layer, material.J0, mean_p) / amp
+    return {**layer.describe(), "mean_displacement": mean, "approach": penetration + mean}
+
+
 def _result_friction(res, grid, material, speed):
     """τf by the dissipation and by the direct form (their difference is a residual): the
     solver's, when it measured this grid's scalars (the same numbers, not made twice)."""
@@ -641,7 +661,8 @@ def _result_friction(res, grid, material, speed):
             tau_f = _window_friction(sigma, grid, material, speed)
         tau_direct = _window_direct_friction(sigma, grid)
     elif tau_f is None or tau_direct is None:
-        tau_f, tau_direct = _friction(sigma, grid.y, material, speed)
+        tau_f, tau_direct = _friction(sigma, grid.y, material, speed,
+                                      layer=getattr(grid, "layer", None))
     return tau_f, tau_direct
 
 

@@ -9,6 +9,7 @@ from . import _assemble
 from ._assemble import (ROUNDOFF, _full_patch, _patches, _window_friction, edge_lag_reach,
                         edge_lags)
 from ._influence import collocation_shifts
+from ._layer import MIN_LAYER_PANELS
 
 
 #: the error estimate is this factor times the first-order bound of the last differences
@@ -43,7 +44,8 @@ def _level_scalars(res, grid, profile, material, speed, amp):
         res["friction"] = (tau_f, None)  # build_result's, should this grid be the answer
     else:
         spectra = _assemble._spectra(sigma, grid.y)  # the friction's, and the law's below
-        res["friction"] = _assemble._friction(sigma, grid.y, material, speed, spectra)
+        res["friction"] = _assemble._friction(sigma, grid.y, material, speed, spectra,
+                                              getattr(grid, "layer", None))
         tau_f = res["friction"][0]
         mean_p = float(sigma.mean())
     out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,
@@ -133,7 +135,7 @@ def _unresolved_memory(material, speed, nodes, panels=None):
     return bound
 
 
-def _estimate(scalars, material, speed):
+def _estimate(scalars, material, speed, layer=None):
     """A-posteriori error estimate from the last converged grids N/8 (when there), N/4, N/2, N.
 
     Each scalar q is assumed to converge at least at first order in 1/N, so the error of q_N is
@@ -147,7 +149,9 @@ def _estimate(scalars, material, speed):
     (estimate, reason, note): reason is None when the grids resolve the contact, else why the
     estimate is not trusted yet; note says what the estimate includes for the memory lengths
     the grids do not resolve (None when they resolve them all, or when every grid of the run is
-    in full contact: no edges, no inner layers).
+    in full contact: no edges, no inner layers).  On a ``layer`` (a `bem.Layer`) the estimate is
+    not trusted (a reason) while its thickness d spans fewer than MIN_LAYER_PANELS panels of
+    N/4 in partial contact.
     """
     if len(scalars) < 3:
         return None, "fewer than three converged grids", None
@@ -186,6 +190,14 @@ def _estimate(scalars, material, speed):
     # full contact has no edges, hence no inner layers: a single harmonic per mode, which the
     # exact panel coefficients give to O(1/N^2) whatever the memory lengths (Appendix B)
     full = all(sc["contact_fraction"] == 1.0 for _, sc in run)
+    if reason is None and layer is not None and not full:
+        # a layer adds the length d, over which the pressure of a thin layer varies at the
+        # contact edges: not resolved below MIN_LAYER_PANELS panels at N/4, not estimated
+        # (full contact has one harmonic per mode, exact whatever d)
+        across = n0 * layer.thickness_over_wavelength
+        if across < MIN_LAYER_PANELS:
+            reason = (f"the layer's thickness spans {across:.2g} panels at N={n0} (at least "
+                      f"{MIN_LAYER_PANELS:g} are needed)")
     shift = 0.0 if full else _unresolved_memory(material, speed, n0, a.get("panels"))
     note = _choose_friction_form(run, est)
     if shift > 0.0:

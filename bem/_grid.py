@@ -28,8 +28,9 @@ import numpy as np
 
 from . import _kernels
 from ._assemble import _patches, _runs
-from ._influence import influence_coefficients_nd
+from ._influence import collocation_shifts, influence_coefficients_nd
 from ._inputs import Prony
+from ._layer import symbol_correction
 from ._operator import CirculantOperator, gmres
 from ._result import (CONVERGED, CYCLED, KRYLOV_FAILED, MESSAGES, OUTER_EXHAUSTED,
                       WINDOW_FAILED)
@@ -71,11 +72,18 @@ CYCLE_ROUNDOFF = 9e-13
 
 
 class _Grid:
-    def __init__(self, profile, material: Prony, speed: float, nodes: int):
+    def __init__(self, profile, material: Prony, speed: float, nodes: int, layer=None):
         self.n = nodes
         self.h = 1.0 / nodes
-        self.op = CirculantOperator(
-            influence_coefficients_nd(material.j_plus, material.terms, speed, nodes))
+        column = influence_coefficients_nd(material.j_plus, material.terms, speed, nodes)
+        correction = None
+        if layer is not None:  # the half-space's symbol plus the layer's alias sum
+            lengths = [speed * tau_i / (2.0 * math.pi) for _, tau_i in material.terms]
+            shifts = collocation_shifts(self.h, material.j_plus, material.terms, lengths)
+            correction = symbol_correction(layer, material.j_plus, material.terms, speed, nodes,
+                                           shifts)
+        self.op = CirculantOperator(column, correction)
+        self.layer = layer      # a bem.Layer, or None (the half-space)
         y = profile.sample(nodes)
         self.y = y - y.mean()  # rounding only: samples have zero mean
         self.amp = float(profile.amplitude)
@@ -453,7 +461,7 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
     if best is None and elastic is not None:
         # no coarser grid: start from the elastic contact on this grid (a symmetric
         # positive-definite problem, on which the active-set method converges from anywhere)
-        eg = _Grid(elastic[0], elastic[1], 0.0, n)
+        eg = _Grid(elastic[0], elastic[1], 0.0, n, getattr(grid, "layer", None))
         er = _solve_one(eg, load, sep, [None], tol, max(max_outer, 50), restart, max_inner)
         if er["status"] == CONVERGED:
             best = (er, eg)

@@ -13,6 +13,10 @@ sliding only E depends on the frequency, so mode n of the BEM operator becomes
 layer: ``k v^_0 = (k d) uniform_compliance(nu, foundation) J0 sigma^_0`` with the relaxed
 compliance ``J0 = J(t -> inf)``, the mean pressure being static in the frame of the indenter.
 
+`Layer` is the input of ``bem.solve(layer=...)``; `symbol_correction` turns the half-space's
+discrete symbol into the layer's (its alias sum, with `continuum_symbol`), `mean_displacement`
+gives the uniform mode (``docs/layers.md`` §7).
+
 Units: t = |k| d and S are dimensionless; `uniform_compliance` is in ``(1 - nu^2)/E`` per
 unit thickness.
 

@@ -31,11 +31,15 @@ class CirculantOperator:
     ----------
     column : ndarray, shape (N,)
         First column ``C_m`` of the circulant (see the module docstring).
+    correction : ndarray, shape (N//2 + 1,), optional
+        Added to the symbol of the column (a layer's, `bem._layer.symbol_correction`).
     """
 
-    def __init__(self, column: np.ndarray):
+    def __init__(self, column: np.ndarray, correction=None):
         self.n = int(column.size)
         sym = sfft.rfft(np.asarray(column, dtype=float))  # the column itself is not kept
+        if correction is not None:
+            sym += correction
         sym[0] = 0.0
         self.symbol = sym
         # the inverse is applied by division, not stored (memory at large N)

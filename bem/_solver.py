@@ -26,6 +26,7 @@ from ._assemble import build_result
 from ._estimate import _estimate, _level_scalars, _met
 from ._grid import START_NODES, _Grid, _solve_one
 from ._inputs import Prony, Sinusoid
+from ._layer import Layer
 from ._result import CONVERGED, STATUS_TARGET, BemResult
 from ._window import _window_refine, _window_wanted
 
@@ -52,7 +53,7 @@ COLD_DIRECT_INNER = 40
 
 def solve(*, load=None, penetration=None, speed, profile=None, material=None, ratio=None,
           hk=None, nodes=None, rtol=None, max_nodes=None, tol=1e-10, max_outer=50,
-          restart=8, max_inner=300, nested=True) -> BemResult:
+          restart=8, max_inner=300, nested=True, layer=None) -> BemResult:
     """Steady sliding of a rigid periodic indenter on a viscoelastic half-plane (eq. 2.4-2.5).
 
     The problem is solved on a sequence of grids N = 512, 1024, 2048, ... (each started from
@@ -112,6 +113,14 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         elastic contact, then from the elastic contact with the first harmonic's compliance
         |J*|), with no estimate.  The adaptive
         mesh is always nested.
+    layer : Layer, optional
+        A layer of thickness d on a rigid foundation in place of the half-space (``bem.Layer``:
+        k d, the foundation, the Poisson ratio); default None, the half-space.  Mode n of the
+        operator is the half-space's times the layer factor S(|n| k d, nu) (``docs/layers.md``);
+        the scalars keep their meaning (Δ/h from the mean line of the deformed surface) and
+        ``diagnostics["layer"]`` adds the indenter's absolute approach.  No contact window with
+        a layer (the periodic grids answer); the estimate is trusted once d spans
+        ``bem._layer.MIN_LAYER_PANELS`` panels of N/4.
 
     Returns
     -------
@@ -129,7 +138,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     return _announced(_refine(_problem(
         load=load, penetration=penetration, speed=speed, profile=profile, material=material,
         ratio=ratio, hk=hk, nodes=nodes, rtol=rtol, max_nodes=max_nodes, tol=tol,
-        max_outer=max_outer, restart=restart, max_inner=max_inner, nested=nested)))
+        max_outer=max_outer, restart=restart, max_inner=max_inner, nested=nested, layer=layer)))
 
 
 # --------------------------------------------------------------------------
@@ -158,6 +167,7 @@ class _Problem:
     restart: int
     max_inner: int
     nested: Any  # as given: only its truth counts
+    layer: Layer | None = None  # None: the half-space
     amp: float = field(init=False)
     control: str = field(init=False)
     asked: float = field(init=False)
@@ -173,7 +183,7 @@ class _Problem:
 
 
 def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, rtol, max_nodes,
-             tol, max_outer, restart, max_inner, nested) -> _Problem:
+             tol, max_outer, restart, max_inner, nested, layer=None) -> _Problem:
     """`solve`'s inputs as one `_Problem`; ValueError (naming the parameter, its value and what
     is allowed) on the first bad one, in the order: the control, speed, `validate`'s
     (bem.ACCEPTED), the options of a fixed or an adaptive mesh, the solver's options."""
@@ -185,6 +195,9 @@ def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, r
     validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
              profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes)
     # validate has refused everything outside bem.ACCEPTED (and conflicting options)
+    if layer is not None and not isinstance(layer, Layer):
+        raise bad("layer", layer, "a bem.Layer (thickness k d, foundation, nu) or None (the "
+                  "half-space)")
     if profile is None:
         profile = Sinusoid(1.0 if hk is None else hk)
     if material is None:
@@ -208,7 +221,7 @@ def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, r
         tol=real("tol", tol, "a finite tolerance in (0, 0.01]", lambda v: 0.0 < v <= 1e-2),
         max_outer=positive_int("max_outer", max_outer, 1),
         restart=positive_int("restart", restart, 1),
-        max_inner=positive_int("max_inner", max_inner, 1), nested=nested)
+        max_inner=positive_int("max_inner", max_inner, 1), nested=nested, layer=layer)
 
 
 # --------------------------------------------------------------------------
@@ -271,7 +284,7 @@ def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | Non
     """Solve and measure the grid of N = n panels into ``run``: its estimate, whether the
     sequence stops there (the target met, or too many grids failed), and a contact window
     where one is wanted (returns the window's answer, if it gave one)."""
-    grid = _Grid(p.profile, p.material, p.speed, n)
+    grid = _Grid(p.profile, p.material, p.speed, n, p.layer)
     res = _solve_level(p, run, grid, elastic, harmonic)
     run.levels.append((n, res["nit"], tuple(res["inner"]), res["status"]))
     # an unconverged grid still gives the next one a better start than none
@@ -290,14 +303,16 @@ def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | Non
     run.good = (res, grid)
     values = _level_scalars(res, grid, p.profile, p.material, p.speed, p.amp)
     run.scalars.append((n, values))
-    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed)
+    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed, p.layer)
     if values.get("use_law"):  # the estimate chose the first-order memory law
         res["friction"] = res["friction_law"]
     if p.nodes is None and run.reason is None and _met(run.estimate, values, p.rtol):
         run.reached = n
         run.stopped = True
         return None
-    if p.nodes is None and run.window is None and _window_wanted(p.load, p.profile, values):
+    # no contact window on a layer: its Toeplitz column is the half-space's real-space one
+    if p.nodes is None and run.window is None and p.layer is None and \
+            _window_wanted(p.load, p.profile, values):
         return _try_window(p, run, res, grid)
     return None
 
@@ -383,7 +398,7 @@ def _grids_result(p: _Problem, run: _Run) -> BemResult:
         extra["window"] = run.window["summary"]
     return build_result(res, grid, p.profile, p.material, p.speed, p.amp, p.load, run.levels,
                         asked=p.asked, control=p.control, error_estimate=estimate,
-                        rtol=p.rtol, extra_diagnostics=extra or None)
+                        rtol=p.rtol, extra_diagnostics=extra or None, on_layer=p.layer)
 
 
 def _short_of_target(p: _Problem, run: _Run):
