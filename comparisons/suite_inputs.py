@@ -145,12 +145,3 @@ def relaxation_spectrum(terms, decades, ratio):
     ``E_i = (ratio − 1)/terms`` at relaxation times ``θ_i = 10**linspace(*decades, terms)``."""
     theta = 10.0 ** np.linspace(decades[0], decades[1], terms)
     return 1.0, tuple((ratio - 1.0) / terms for _ in theta), tuple(float(t) for t in theta)
-
-
-def series_file_text(first, base, amplitudes, times, comment) -> str:
-    """A series file: ``#`` comment lines, ``<first> <base>`` (``J0`` for a creep series, the
-    format of :func:`bem.read_prony`; ``E_r`` for a relaxation series,
-    :func:`viscosine.materials.read_relaxation`), then one ``amplitude time`` line per term."""
-    lines = [f"# {line}" for line in comment.splitlines()] + [f"{first} {float(base)!r}"]
-    lines += [f"{float(a)!r} {float(t)!r}" for a, t in zip(amplitudes, times)]
-    return "\n".join(lines) + "\n"
