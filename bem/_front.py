@@ -96,6 +96,9 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
     Menga, Putignano, Carbone & Demelio (2014): eq. (2.3) (the solid and its creep time),
     eqs (2.7)–(2.8) (the modulus at the sliding frequency), eq. (B6) (full contact).
     """
+    if bem_options.get("layer") is not None:
+        raise ValueError(f"layer={bem_options['layer']!r} is not allowed: solve_si takes no "
+                         "layer yet (bem.solve does, in the units of bem)")
     for name in ("profile", "ratio", "hk", "load"):
         if name in bem_options:
             raise ValueError(f"{name}={bem_options[name]!r} is not allowed: solve_si takes the "

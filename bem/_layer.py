@@ -206,6 +206,13 @@ def uniform_compliance(nu, foundation, lateral="free"):
 #: the thinnest layer a solve takes, kd: the operator sums the modes |m| < _T_ONE/kd (2.5e5
 #: here) and the mesh must resolve d (`MIN_LAYER_PANELS` panels at N/4: N >= 1e6 here)
 THICKNESS_MIN = 1e-4
+#: round-off of the lowest mode of the half-space's symbol relative to it, per panel: its
+#: real-space column sums N coefficients (measured 2.2e-18 N at N = 2^10 ... 2^20); five times
+#: that.  A layer's lowest mode, S(kd) times the half-space's, is made as the half-space's plus a
+#: correction of order one (`symbol_correction`), so it carries this round-off over S(kd)
+SYMBOL_ROUNDOFF_PER_PANEL = 1e-17
+#: the relative round-off a layer's lowest mode may carry: a hundredth of the default rtol
+SYMBOL_ROUNDOFF_BUDGET = 1e-8
 #: the adaptive mesh trusts its estimate only once d spans this many panels on the coarsest
 #: grid of the estimate (N/4): d is a length of the solution (the pressure varies over d at
 #: the contact edges of a thin layer), which the grids must see before their differences do
@@ -327,6 +334,15 @@ def symbol_correction(layer: Layer, j_plus, terms, speed, nodes, shifts):
     out = np.zeros(nodes // 2 + 1, dtype=complex)
     np.add.at(out, bins, weight * continuum_symbol(m, j_plus, terms, speed, nodes, shifts))
     return out
+
+
+def finest_nodes(layer: Layer) -> int:
+    """The most panels on which the layer's lowest mode keeps its relative round-off,
+    ``SYMBOL_ROUNDOFF_PER_PANEL N / S(kd)``, within SYMBOL_ROUNDOFF_BUDGET: a thin layer (S(kd)
+    small: (2/3)(kd)^3 for a bonded incompressible one) allows fewer, and one too thin for any
+    grid is refused rather than answered from a lowest mode that is round-off."""
+    s = float(layer.factor([1.0])[0])
+    return int(SYMBOL_ROUNDOFF_BUDGET * s / SYMBOL_ROUNDOFF_PER_PANEL)
 
 
 def mean_displacement(layer: Layer, j0: float, load: float) -> float:

@@ -26,7 +26,7 @@ from ._assemble import build_result
 from ._estimate import _estimate, _level_scalars, _met
 from ._grid import START_NODES, _Grid, _solve_one
 from ._inputs import Prony, Sinusoid
-from ._layer import Layer
+from ._layer import SYMBOL_ROUNDOFF_BUDGET, Layer, finest_nodes
 from ._result import CONVERGED, STATUS_TARGET, BemResult
 from ._window import _window_refine, _window_wanted
 
@@ -186,7 +186,8 @@ def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, r
              tol, max_outer, restart, max_inner, nested, layer=None) -> _Problem:
     """`solve`'s inputs as one `_Problem`; ValueError (naming the parameter, its value and what
     is allowed) on the first bad one, in the order: the control, speed, `validate`'s
-    (bem.ACCEPTED), the options of a fixed or an adaptive mesh, the solver's options."""
+    (bem.ACCEPTED), the layer, the options of a fixed or an adaptive mesh (on a layer, at most
+    `finest_nodes` panels), the solver's options."""
     if (load is None) == (penetration is None):
         raise bad("load", load, "exactly one of load and penetration "
                   f"(got load={load!r}, penetration={penetration!r})")
@@ -213,6 +214,16 @@ def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, r
             raise bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
         rtol = DEFAULT_RTOL if rtol is None else float(rtol)
         max_nodes = ADAPTIVE_MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
+    if layer is not None:
+        finest = finest_nodes(layer)
+        why = (f"(k d = {layer.thickness:g}, S(kd) = {float(layer.factor([1.0])[0]):.3g}): the "
+               "layer's lowest mode, S(kd) times the half-space's, would carry a relative "
+               f"round-off above {SYMBOL_ROUNDOFF_BUDGET:g} on more panels")
+        if (nodes if nodes is not None else START_NODES) > finest:
+            name, value = ("nodes", nodes) if nodes is not None else ("layer", layer)
+            raise bad(name, value, f"at most {finest} panels with this layer {why}")
+        if nodes is None:
+            max_nodes = min(max_nodes, finest)
     return _Problem(
         profile=profile, material=material, speed=float(speed),
         load=None if load is None else float(load),

@@ -127,24 +127,38 @@ def test_elastic_limits(layer):
 
 def test_thin_incompressible_layer_stiffens_like_t_cubed():
     """A thin bonded incompressible layer in full contact: p_FC = hk/(2 S(kd) |J*(1)|) with
-    S = (2/3) t^3 (1 - (9/5) t^2 + ...): the measured exponent of p_FC in kd is -3 to the
-    t^2 term (-2.994 between 0.02 and 0.04), and p_FC (2/3)(kd)^3 tends to hk/(2 |J*(1)|).
-    On N panels the aliases of mode 1 (S ~ 1) add ~1/(S(kd) N^3) to its tiny symbol S(kd)
-    (the +-p aliases cancel to that order): 2.3e-7 at kd = 0.01 on 2^14 panels, 3.6e-9 on
-    2^16, with the sampled minimum's (pi/N)^2/2."""
-    kds = (0.01, 0.02, 0.04)
+    S = (2/3) t^3 (1 - (9/5) t^2 + O(t^4)): the measured exponent of p_FC in kd tends to -3 as
+    kd falls, and p_FC (2/3)(kd)^3 (1 - (9/5)(kd)^2) tends to hk/(2 |J*(1)|).  On N panels the
+    aliases of mode 1 (S ~ 1) add ~1/(S(kd) N^3) to its tiny symbol S(kd), and its round-off
+    grows like N/S(kd) (`finest_nodes`): N = 2^16 keeps both below 1e-8 down to kd = 0.05."""
+    kds = (0.05, 0.1, 0.2)
     loads = []
     for kd in kds:
         layer = bem.Layer(thickness=kd, foundation="bonded", nu=0.5)
         r = bem.solve(penetration=1.0, speed=1.0, material=SLS3, nodes=2 ** 16, layer=layer)
         assert r.success and r.full_contact
         exact = 1.0 / (2.0 * layer.factor([1.0])[0] * abs(complex(SLS3.jstar([1.0], 1.0)[0])))
-        assert r.load == pytest.approx(exact, rel=1e-7)  # 3.6e-9 + 1.2e-9 expected
+        assert r.load == pytest.approx(exact, rel=1e-7)
         loads.append(r.load)
     slopes = np.diff(np.log(loads)) / np.diff(np.log(kds))
-    assert np.all(np.abs(slopes + 3.0) < 0.01), slopes
+    assert abs(slopes[0] + 3.0) < 0.03 and abs(slopes[0] + 3.0) < abs(slopes[1] + 3.0), slopes
     asym = 1.0 / (2.0 * abs(complex(SLS3.jstar([1.0], 1.0)[0])))
-    assert loads[0] * (2.0 / 3.0) * kds[0] ** 3 == pytest.approx(asym, rel=2e-4)  # 9/5 t^2
+    two_terms = loads[0] * (2.0 / 3.0) * kds[0] ** 3 * (1.0 - 1.8 * kds[0] ** 2)
+    assert two_terms == pytest.approx(asym, rel=1e-4)  # the t^4 term: ~1e-5 at kd = 0.05
+
+
+def test_a_layer_too_thin_for_the_mesh_is_refused():
+    """The lowest mode of a very thin layer is round-off on a fine grid: refused, naming the
+    mesh (a fixed one) or the layer (too thin for any grid), never answered."""
+    thin = bem.Layer(thickness=1e-3, foundation="bonded", nu=0.5)  # S = 6.7e-10
+    with pytest.raises(ValueError, match=r"^layer="):
+        bem.solve(load=0.3, speed=1.0, layer=thin)
+    layer = bem.Layer(thickness=0.05, foundation="bonded", nu=0.5)
+    with pytest.raises(ValueError, match=r"^nodes=1048576 is not allowed: at most 82960"):
+        bem.solve(penetration=1.0, speed=1.0, nodes=2 ** 20, layer=layer)
+    with pytest.raises(ValueError, match=r"^layer="):
+        bem.solve_si(nu=0.5, wavelength=0.01, amplitude=1e-4, speed=1.0, E0=1e6, Einf=3e6,
+                     tau_creep=1.0, mean_pressure=1e4, layer=layer)
 
 
 @pytest.mark.parametrize("layer", LAYERS)
@@ -158,6 +172,8 @@ def test_adaptive_estimate_is_honest(layer):
     assert est is not None and "window" not in r.diagnostics
     ref = bem.solve(load=0.3, speed=1.0, material=SLS3, nodes=64 * r.nodes, layer=layer)
     assert ref.success
+    # the friction's two forms (dissipation, weighted by S per mode, and direct) agree
+    assert r.residuals["friction_mismatch"] < 1e-5 and ref.residuals["friction_mismatch"] < 1e-6
     for key in ("ka", "ke", "ke_hat"):
         assert abs(getattr(r, key) - getattr(ref, key)) <= 3.0 * est[key], key
     for key in ("penetration", "mu", "tau_f"):
