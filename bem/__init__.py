@@ -25,7 +25,8 @@ protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
 ``ACCEPTED`` lists the range of every input and why, ``validate`` checks them (``solve`` calls
 it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.  ``solve(...,
 layer=Layer(thickness=k d, foundation=..., nu=...))`` puts a layer on a rigid foundation in place
-of the half-space (``docs/layers.md``).
+of the half-space (``docs/layers.md``); a `Layer` checks its own inputs, and a thin one limits
+the mesh (``_layer.finest_nodes``).
 """
 from viscosine import Fields
 from viscosine.checks import positive_int as _positive_int

@@ -3,7 +3,7 @@
 Everything inside these ranges is solved, or reported as an unconverged result with its
 residuals; everything outside is refused up front with a ValueError naming the parameter, its
 value and what is allowed.  The bounds were chosen from actual solves at N = 1024 at and beyond
-each extreme (see `tests/test_bem_accepted.py`, which also samples the whole box at random).
+each extreme (see `tests/test_bem_protocol.py`, which also samples the whole box at random).
 
 Units as in `bem/__init__.py`: load p∞(1 − ν²)/E_ref, penetration Δ/h, speed V τ_ref k, ratio
 E∞/E0 of the standard linear solid, hk = h k; Prony compliances in 1/E_ref, times in τ_ref.
