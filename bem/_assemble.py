@@ -662,7 +662,7 @@ def _result_friction(res, grid, material, speed):
         tau_direct = _window_direct_friction(sigma, grid)
     elif tau_f is None or tau_direct is None:
         tau_f, tau_direct = _friction(sigma, grid.y, material, speed,
-                                      layer=getattr(grid, "layer", None))
+                                      layer=grid.layer)
     return tau_f, tau_direct
 
 

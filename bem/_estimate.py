@@ -45,7 +45,7 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     else:
         spectra = _assemble._spectra(sigma, grid.y)  # the friction's, and the law's below
         res["friction"] = _assemble._friction(sigma, grid.y, material, speed, spectra,
-                                              getattr(grid, "layer", None))
+                                              grid.layer)
         tau_f = res["friction"][0]
         mean_p = float(sigma.mean())
     out = {"penetration": (amp - grid.s_offset - float(res["s"])) / amp, "tau_f": tau_f,

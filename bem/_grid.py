@@ -461,7 +461,7 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
     if best is None and elastic is not None:
         # no coarser grid: start from the elastic contact on this grid (a symmetric
         # positive-definite problem, on which the active-set method converges from anywhere)
-        eg = _Grid(elastic[0], elastic[1], 0.0, n, getattr(grid, "layer", None))
+        eg = _Grid(elastic[0], elastic[1], 0.0, n, grid.layer)
         er = _solve_one(eg, load, sep, [None], tol, max(max_outer, 50), restart, max_inner)
         if er["status"] == CONVERGED:
             best = (er, eg)

@@ -219,12 +219,22 @@ SYMBOL_ROUNDOFF_BUDGET = 1e-8
 MIN_LAYER_PANELS = 4.0
 
 
+def _same_thickness(kd, d_over_lambda) -> bool:
+    """Whether k d and d/lambda, both given, are one thickness (as a Layer keeps them both:
+    `dataclasses.replace` passes both back)."""
+    try:
+        return math.isclose(float(kd), 2.0 * math.pi * float(d_over_lambda), rel_tol=1e-15)
+    except (TypeError, ValueError):
+        return False
+
+
 @dataclass(frozen=True)
 class Layer:
     """A layer of thickness d on a rigid foundation, under the profile (`bem.solve(layer=...)`).
 
-    Give exactly one of ``thickness`` (k d, k = 2 pi/lambda) and ``thickness_over_wavelength``
-    (d/lambda); both are kept, the other made from the given one.
+    Give one of ``thickness`` (k d, k = 2 pi/lambda) and ``thickness_over_wavelength``
+    (d/lambda); both are kept, the other made from the given one (both may be given when they
+    are the same thickness, as `dataclasses.replace` gives them).
 
     Parameters
     ----------
@@ -254,7 +264,12 @@ class Layer:
         two_pi = 2.0 * math.pi
         allowed = (f"a finite thickness k d >= {THICKNESS_MIN:g} (k = 2 pi/lambda; "
                    "layer=None for the half-space)")
-        if (self.thickness is None) == (self.thickness_over_wavelength is None):
+        both = self.thickness is not None and self.thickness_over_wavelength is not None
+        if both and not _same_thickness(self.thickness, self.thickness_over_wavelength):
+            both = False  # two different layers: refused below
+        elif both:
+            object.__setattr__(self, "thickness_over_wavelength", None)  # as dataclasses.replace
+        if not both and (self.thickness is None) == (self.thickness_over_wavelength is None):
             raise bad("thickness", self.thickness, "exactly one of thickness (k d) and "
                       "thickness_over_wavelength (d/lambda) (got thickness="
                       f"{self.thickness!r}, thickness_over_wavelength="

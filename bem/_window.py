@@ -48,6 +48,7 @@ class _WindowGrid:
     """
 
     window = True
+    layer = None  # the half-space only: a layer is not handed to a window
 
     def __init__(self, profile, material: Prony, speed: float, nodes: int, first: int,
                  count: int):

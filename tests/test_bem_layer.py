@@ -197,6 +197,15 @@ def test_unresolved_layer_is_not_estimated():
     assert "layer's thickness" in r.diagnostics["estimate_note"]
 
 
+def test_a_layer_can_be_replaced_field_by_field():
+    import dataclasses
+    a = bem.Layer(thickness_over_wavelength=0.5, foundation="bonded", nu=0.4)
+    b = dataclasses.replace(a, nu=0.3)
+    assert (b.thickness, b.thickness_over_wavelength, b.nu) == (a.thickness, 0.5, 0.3)
+    with pytest.raises(ValueError, match=r"^thickness="):
+        dataclasses.replace(a, thickness=1.0)  # with the old d/lambda: two thicknesses
+
+
 def test_thickness_over_wavelength():
     a = bem.Layer(thickness_over_wavelength=0.5, foundation="bonded", nu=0.4)
     assert a.thickness == math.pi and a.thickness_over_wavelength == 0.5
