@@ -200,6 +200,7 @@ def test_gate_catches_load_and_sign_violations():
     class G:  # a two-panel-free state with a negative pressure and a wrong load
         n, h = 16, 1 / 16
         nodes, window, s_offset, scale = 16, False, 0.0, 1.0  # a periodic grid (h k = 1)
+        layer = None  # on the half-space
         x = np.arange(16) / 16 - 0.5
         y = np.cos(2 * np.pi * x)
 
