@@ -311,16 +311,12 @@ def continuum_symbol(modes, j_plus, terms, speed, nodes, shifts) -> np.ndarray:
     The discrete symbol (``rfft`` of the column of `_influence.influence_coefficients_nd`) is
     its alias sum over ``m = n + p N``; ``delta_i`` (wavelengths) is term i's collocation shift
     (`_influence.collocation_shifts`: its memory part is sampled at ``X - delta_i``).  A term
-    with no memory (speed 0) acts at once.
+    with no memory (speed 0) acts at once: its factor is then 1.
     """
     m = np.asarray(modes, dtype=float)
     js = np.full(m.shape, j_plus, dtype=complex)
     for (j_i, tau_i), delta in zip(terms, shifts):
         if j_i == 0.0:
-            continue
-        length = speed * tau_i / (2.0 * math.pi)
-        if length == 0.0:
-            js += j_i
             continue
         phase = np.exp(-2j * math.pi * m * delta) if delta > 0.0 else 1.0
         js += j_i * phase / (1.0 - 1j * m * speed * tau_i)
