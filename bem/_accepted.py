@@ -140,7 +140,8 @@ def _check_profile(profile):
 
 
 def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, profile=None,
-             material=None, nodes=None, rtol=None, max_nodes=None, **solver_options):
+             material=None, nodes=None, rtol=None, max_nodes=None, layer=None,
+             **solver_options):
     """Check the inputs of `bem.solve` against `ACCEPTED`.
 
     Parameters
@@ -148,6 +149,12 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
     load, penetration, speed, ratio, hk, profile, material, nodes, rtol, max_nodes
         As in `bem.solve`; None means "not given" and is not checked.  At most one of load and
         penetration, of ratio and material, of hk and profile.
+    layer : bem.Layer, optional
+        As in `bem.solve`: checked to be a Layer whose lowest mode the fixed mesh (or the
+        adaptive mesh's first grid) keeps within its round-off budget (`_layer.finest_nodes`),
+        and, under penetration control, one the penetration does not cross: Δ < d, that is
+        (Δ/h) hk < k d (the approach from the undeformed face is Δ plus the mean compression,
+        never less).
     **solver_options
         Further options of `bem.solve` (tol, max_outer, …): not checked here (`bem.solve`
         checks them).
@@ -187,5 +194,27 @@ def validate(*, load=None, penetration=None, speed=None, ratio=None, hk=None, pr
     for name, value in (("nodes", nodes), ("max_nodes", max_nodes)):
         if value is not None:
             out[name] = _integer(name, value)
+    if layer is not None:
+        _check_layer(layer, out.get("nodes"), out.get("penetration"), amp)
     return out
+
+
+def _check_layer(layer, nodes, penetration, amp):
+    """A layer `validate` accepts (see there); ValueError naming the input at fault."""
+    from ._grid import START_NODES
+    from ._layer import SYMBOL_ROUNDOFF_BUDGET, Layer, finest_nodes
+    if not isinstance(layer, Layer):
+        raise bad("layer", layer, "a bem.Layer (thickness k d, foundation, nu) or None (the "
+                  "half-space)")
+    finest = finest_nodes(layer)
+    if (nodes if nodes is not None else START_NODES) > finest:
+        name, value = ("nodes", nodes) if nodes is not None else ("layer", layer)
+        raise bad(name, value, f"at most {finest} panels with this layer (k d = "
+                  f"{layer.thickness:g}, S(kd) = {float(layer.factor([1.0])[0]):.3g}): the "
+                  "layer's lowest mode, S(kd) times the half-space's, would carry a relative "
+                  f"round-off above {SYMBOL_ROUNDOFF_BUDGET:g} on more panels")
+    if penetration is not None and penetration * amp >= layer.thickness:
+        raise bad("penetration", penetration, f"a penetration the layer can take: Δ/h < k d/hk "
+                  f"= {layer.thickness / amp:.6g} (k d = {layer.thickness:g}, hk = {amp:g}); "
+                  "deeper, the indenter would reach the foundation")
 

@@ -628,6 +628,9 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
         extra_diagnostics = dict(extra_diagnostics or {})
         extra_diagnostics["layer"] = _layer_diagnostics(on_layer, material, mean_p, amp,
                                                         penetration)
+        reach = _reaches_foundation(extra_diagnostics["layer"], amp)
+        if reach and success:
+            success, status, message = False, STATUS_INVALID, "invalid result: " + reach
     return BemResult(
         success=success, status=status, message=message, nit=int(res["nit"]),
         inner_iterations=tuple(res["inner"]), residuals=residuals, nodes=n, speed=speed,
@@ -649,6 +652,17 @@ def _layer_diagnostics(layer, material, mean_p, amp, penetration):
     indenter's approach into the layer from the undeformed top face, over h: Δ/h plus it."""
     mean = mean_displacement(layer, material.J0, mean_p) / amp
     return {**layer.describe(), "mean_displacement": mean, "approach": penetration + mean}
+
+
+def _reaches_foundation(described, amp):
+    """Why an answer on a layer is no answer: the indenter's approach (over h) reaches the
+    foundation, approach h >= d, i.e. approach hk >= k d (None when it does not).  Linear
+    theory has no such limit; the body does."""
+    kd = described["thickness"]
+    if described["approach"] * amp >= kd:
+        return (f"the indenter's approach {described['approach']:.4g} h reaches the foundation "
+                f"at d = {kd / amp:.4g} h (k d = {kd:g}, hk = {amp:g})")
+    return None
 
 
 def _result_friction(res, grid, material, speed):

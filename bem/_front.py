@@ -12,6 +12,7 @@ from viscosine.checks import real, reals
 from . import _solver
 from ._accepted import ACCEPTED, validate
 from ._inputs import Prony, SampledProfile
+from ._layer import Layer
 
 def sweep(*, load=None, penetration=None, speed, errors=False, **options):
     """Solve every (load or penetration, speed) pair: loads outer, speeds inner.
@@ -42,7 +43,7 @@ def sweep(*, load=None, penetration=None, speed, errors=False, **options):
 
 def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=None, E0=None,
              Einf=None, tau=None, tau_creep=None, tau_relax=None, mean_pressure=None,
-             penetration=None, **bem_options):
+             penetration=None, thickness=None, foundation=None, **bem_options):
     """Solve a sliding contact from SI data: any material, the sinusoid or a sampled profile.
 
     Parameters
@@ -72,15 +73,23 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         converted exactly (τ = τ_R Einf/E0).  The dimensionless speed is V τ k.
     mean_pressure, penetration : float
         Exactly one: p∞ [Pa] or Δ [m], 0 < Δ ≤ h.
+    thickness : float, optional
+        d [m]: a layer of this thickness on a rigid foundation in place of the half-space
+        (`bem.Layer` with d/λ and Poisson's ratio ``nu``); needs ``foundation``.
+    foundation : {"bonded", "frictionless"}, optional
+        With ``thickness``: the layer's lower face on the foundation.
     **bem_options
-        Options of `bem.solve` (nodes, rtol, max_nodes, tol, …).
+        Options of `bem.solve` (nodes, rtol, max_nodes, tol, …); not ``layer`` (give
+        ``thickness`` and ``foundation``).
 
     Returns
     -------
     viscosine.SIResult
         Lengths in m, stresses in Pa; ``solution`` is the `BemResult`.  ``full_contact_pressure``
         is p_FC(V) = (hk/2)|E*(kV)|/(1 − ν²) of the sinusoid (Appendix B, eq. B6, from the
-        material's own complex compliance; None for a sampled profile); ``threshold_speed`` is
+        material's own complex compliance; on a layer divided by S(kd, ν), the factor of its
+        mode 1; None for a sampled profile); the layer's ``approach`` and ``mean_displacement``
+        are in ``solution.diagnostics["layer"]`` (over h); ``threshold_speed`` is
         None (the BEM has no closed form for it).  A DMA fit probed at frequencies k_n V
         outside its measured window (n = 1 … ⌈λ/2a⌉, the harmonics of the contact) raises a
         `UserWarning` (the modulus there is extrapolated).
@@ -96,9 +105,9 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
     Menga, Putignano, Carbone & Demelio (2014): eq. (2.3) (the solid and its creep time),
     eqs (2.7)–(2.8) (the modulus at the sliding frequency), eq. (B6) (full contact).
     """
-    if bem_options.get("layer") is not None:
-        raise ValueError(f"layer={bem_options['layer']!r} is not allowed: solve_si takes no "
-                         "layer yet (bem.solve does, in the units of bem)")
+    if "layer" in bem_options:
+        raise ValueError(f"layer={bem_options['layer']!r} is not allowed: solve_si takes the "
+                         "layer in SI (thickness= [m] and foundation=; nu= is its ratio)")
     for name in ("profile", "ratio", "hk", "load"):
         if name in bem_options:
             raise ValueError(f"{name}={bem_options[name]!r} is not allowed: solve_si takes the "
@@ -111,10 +120,13 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         {"nu": nu, "wavelength": wavelength, "amplitude": amplitude, "speed": speed,
          "mean_pressure": mean_pressure, "penetration": penetration})
     groups = _bem_groups(sc, profile, prony if model is not None else None)
+    layer = _si_layer(thickness, foundation, nu, sc.wavelength)
     validate(**{k: v for k, v in bem_options.items()})
-    sol = _solver.solve(**groups, **bem_options)
+    sol = _solver.solve(**groups, **bem_options, layer=layer)
     pfc = (None if profile is not None
            else 0.5 * sc.hk / abs(complex(prony.jstar([1.0], sc.speed)[0])))
+    if pfc is not None and layer is not None:
+        pfc /= float(layer.factor([1.0])[0])
     if model is not None and sol.success and sc.speed > 0.0:
         # the contact's harmonics n = 1 … ⌈λ/2a⌉, at ω_n = n k V (rad/s)
         top = math.ceil(1.0 / max(float(sol.contact_fraction), 1e-300) - 1e-9)
@@ -122,6 +134,20 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         if text is not None:
             warnings.warn(text, UserWarning, stacklevel=2)
     return si.result(sol, sc, full_contact_load=pfc, threshold_speed=None)
+
+
+def _si_layer(thickness, foundation, nu, wavelength):
+    """The `bem.Layer` of ``thickness`` d [m] over ``wavelength`` (None without a thickness)."""
+    if thickness is None:
+        if foundation is not None:
+            raise ValueError(f"foundation={foundation!r} is not allowed without thickness=: it "
+                             "is the lower face of a layer of thickness d [m]")
+        return None
+    d = real("thickness", thickness, "a finite layer thickness d > 0 [m]", lambda v: v > 0.0)
+    if foundation is None:
+        raise ValueError("foundation=None is not allowed with thickness=: 'bonded' or "
+                         "'frictionless' (the layer's lower face on the rigid foundation)")
+    return Layer(thickness_over_wavelength=d / wavelength, foundation=foundation, nu=nu)
 
 
 def _bem_groups(sc, profile, prony):

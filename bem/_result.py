@@ -221,15 +221,22 @@ class BemResult:
     def as_dict(self) -> dict:
         """The JSON record (serialisable with ``allow_nan=False``; non-finite values are None).
 
-        The keys of the semi-analytic road's record plus ``nodes`` and, on an adaptive mesh,
-        ``rtol``.
+        The keys of the semi-analytic road's record plus ``nodes``, on an adaptive mesh
+        ``rtol`` and, on a layer, ``layer``: its thickness (k d and d/λ), foundation, ν, uniform
+        compliance, ``mean_displacement`` and the indenter's ``approach`` (over h; see
+        ``diagnostics["layer"]``, which the record carries here instead).
         """
         inputs = {"nodes": self.nodes}
         if self.rtol is not None:
             inputs["rtol"] = self.rtol
-        return protocol.record(self, "bem", inputs=inputs,
-                                error_estimate=None if self.error_estimate is None
-                                else dict(self.error_estimate))
+        layer = self.extra_diagnostics.get("layer")
+        if layer is not None:
+            inputs["layer"] = dict(layer)
+        rec = protocol.record(self, "bem", inputs=inputs,
+                              error_estimate=None if self.error_estimate is None
+                              else dict(self.error_estimate))
+        rec["diagnostics"].pop("layer", None)
+        return rec
 
     def fields(self, x_over_lambda=None) -> Fields:
         """Pressure, displacement and gap over one period.

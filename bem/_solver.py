@@ -26,7 +26,7 @@ from ._assemble import build_result
 from ._estimate import _estimate, _level_scalars, _met
 from ._grid import START_NODES, _Grid, _solve_one
 from ._inputs import Prony, Sinusoid
-from ._layer import SYMBOL_ROUNDOFF_BUDGET, Layer, finest_nodes
+from ._layer import Layer, finest_nodes
 from ._result import CONVERGED, STATUS_TARGET, BemResult
 from ._window import _window_refine, _window_wanted
 
@@ -194,11 +194,11 @@ def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, r
     if speed is None:
         raise bad("speed", speed, ACCEPTED["speed"][2])
     validate(load=load, penetration=penetration, speed=speed, ratio=ratio, hk=hk,
-             profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes)
-    # validate has refused everything outside bem.ACCEPTED (and conflicting options)
-    if layer is not None and not isinstance(layer, Layer):
-        raise bad("layer", layer, "a bem.Layer (thickness k d, foundation, nu) or None (the "
-                  "half-space)")
+             profile=profile, material=material, nodes=nodes, rtol=rtol, max_nodes=max_nodes,
+             layer=layer)
+    # validate has refused everything outside bem.ACCEPTED, conflicting options and a layer
+    # that is not one, too thin for the fixed mesh or the first grid, or out of the
+    # penetration's reach
     if profile is None:
         profile = Sinusoid(1.0 if hk is None else hk)
     if material is None:
@@ -214,16 +214,8 @@ def _problem(*, load, penetration, speed, profile, material, ratio, hk, nodes, r
             raise bad("nested", nested, "True without nodes (the adaptive mesh is nested)")
         rtol = DEFAULT_RTOL if rtol is None else float(rtol)
         max_nodes = ADAPTIVE_MAX_NODES if max_nodes is None else max(int(max_nodes), START_NODES)
-    if layer is not None:
-        finest = finest_nodes(layer)
-        why = (f"(k d = {layer.thickness:g}, S(kd) = {float(layer.factor([1.0])[0]):.3g}): the "
-               "layer's lowest mode, S(kd) times the half-space's, would carry a relative "
-               f"round-off above {SYMBOL_ROUNDOFF_BUDGET:g} on more panels")
-        if (nodes if nodes is not None else START_NODES) > finest:
-            name, value = ("nodes", nodes) if nodes is not None else ("layer", layer)
-            raise bad(name, value, f"at most {finest} panels with this layer {why}")
-        if nodes is None:
-            max_nodes = min(max_nodes, finest)
+    if layer is not None and nodes is None:
+        max_nodes = min(max_nodes, finest_nodes(layer))
     return _Problem(
         profile=profile, material=material, speed=float(speed),
         load=None if load is None else float(load),

@@ -83,12 +83,14 @@ def test_full_contact_closed_form(layer):
     sigma_1 = (hk/2)/(2 S(kd) J*(1)) (mode 1 of the layer's operator).  The panel values are the
     point values over sinc(pi n/N) mode by mode; the aliases of mode 1 add ~1.6/N^2 (2.4e-11 at
     2^18).  The other modes vanish to the rounding of the samples amplified by the inverse
-    symbol (~ n: 2e-12 measured)."""
+    symbol (~ n: 2e-12 measured).  hk = 0.1: the crest's approach, h, stays within d = 10 h
+    (at hk = k d = 1 it would reach the foundation, and the answer is refused)."""
     s = layer.factor([1.0])[0]
     assert s < 0.9  # the layer matters
-    exact = 0.25 / (s * complex(SLS3.jstar([1.0], 1.0)[0]))
+    hk = 0.1
+    exact = 0.25 * hk / (s * complex(SLS3.jstar([1.0], 1.0)[0]))
     nodes, load = 2 ** 18, 4.0 * abs(exact)  # twice the full-contact load
-    r = bem.solve(load=load, speed=1.0, material=SLS3, nodes=nodes, layer=layer)
+    r = bem.solve(load=load, speed=1.0, material=SLS3, hk=hk, nodes=nodes, layer=layer)
     assert r.success and r.full_contact
     sh = sfft.rfft(r.pressure) / nodes
     point = -sh[1] * np.sinc(1.0 / nodes)  # -: panel 0 sits at X = -1/2
@@ -96,7 +98,7 @@ def test_full_contact_closed_form(layer):
     assert abs(sh[0].real - load) <= ROUNDOFF * load
     assert np.max(np.abs(sh[2:])) <= 1e-10 * abs(exact)  # sample rounding times |1/symbol| ~ n
     # the full-contact threshold: the pressure's minimum at zero, p_FC = 2|sigma_1|
-    t = bem.solve(penetration=1.0, speed=1.0, material=SLS3, nodes=2 ** 14, layer=layer)
+    t = bem.solve(penetration=1.0, speed=1.0, material=SLS3, hk=hk, nodes=2 ** 14, layer=layer)
     assert t.success and t.full_contact
     assert t.load == pytest.approx(2.0 * abs(exact), rel=1e-7)  # (pi/N)^2/2 panel sampling
 
@@ -130,19 +132,21 @@ def test_thin_incompressible_layer_stiffens_like_t_cubed():
     S = (2/3) t^3 (1 - (9/5) t^2 + O(t^4)): the measured exponent of p_FC in kd tends to -3 as
     kd falls, and p_FC (2/3)(kd)^3 (1 - (9/5)(kd)^2) tends to hk/(2 |J*(1)|).  On N panels the
     aliases of mode 1 (S ~ 1) add ~1/(S(kd) N^3) to its tiny symbol S(kd), and its round-off
-    grows like N/S(kd) (`finest_nodes`): N = 2^16 keeps both below 1e-8 down to kd = 0.05."""
-    kds = (0.05, 0.1, 0.2)
+    grows like N/S(kd) (`finest_nodes`): N = 2^16 keeps both below 1e-8 down to kd = 0.05.
+    hk = 0.01 keeps the crest's approach, h, within the thinnest layer (d = 5 h)."""
+    kds, hk = (0.05, 0.1, 0.2), 0.01
     loads = []
     for kd in kds:
         layer = bem.Layer(thickness=kd, foundation="bonded", nu=0.5)
-        r = bem.solve(penetration=1.0, speed=1.0, material=SLS3, nodes=2 ** 16, layer=layer)
+        r = bem.solve(penetration=1.0, speed=1.0, material=SLS3, hk=hk, nodes=2 ** 16,
+                      layer=layer)
         assert r.success and r.full_contact
-        exact = 1.0 / (2.0 * layer.factor([1.0])[0] * abs(complex(SLS3.jstar([1.0], 1.0)[0])))
+        exact = hk / (2.0 * layer.factor([1.0])[0] * abs(complex(SLS3.jstar([1.0], 1.0)[0])))
         assert r.load == pytest.approx(exact, rel=1e-7)
         loads.append(r.load)
     slopes = np.diff(np.log(loads)) / np.diff(np.log(kds))
     assert abs(slopes[0] + 3.0) < 0.03 and abs(slopes[0] + 3.0) < abs(slopes[1] + 3.0), slopes
-    asym = 1.0 / (2.0 * abs(complex(SLS3.jstar([1.0], 1.0)[0])))
+    asym = hk / (2.0 * abs(complex(SLS3.jstar([1.0], 1.0)[0])))
     two_terms = loads[0] * (2.0 / 3.0) * kds[0] ** 3 * (1.0 - 1.8 * kds[0] ** 2)
     assert two_terms == pytest.approx(asym, rel=1e-4)  # the t^4 term: ~1e-5 at kd = 0.05
 
@@ -232,3 +236,41 @@ def test_bad_layer(kwargs, name):
 def test_bad_layer_argument():
     with pytest.raises(ValueError, match=r"^layer="):
         bem.solve(load=0.3, speed=1.0, nodes=1024, layer={"thickness": 1.0})
+
+
+def test_a_penetration_through_the_layer_is_refused():
+    """Under penetration control the approach is at least Δ: Δ ≥ d ((Δ/h) hk ≥ k d) is refused
+    before any work, naming the penetration and the largest one allowed.  (An incompressible
+    bonded layer does not compress on the whole: its approach is Δ itself.)"""
+    layer = bem.Layer(thickness=0.5, foundation="bonded", nu=0.5)
+    with pytest.raises(ValueError, match=r"penetration=0\.6 is not allowed: .*Δ/h < k d/hk = 0\.5"):
+        bem.validate(penetration=0.6, speed=1.0, hk=1.0, layer=layer)
+    with pytest.raises(ValueError, match=r"penetration=0\.5 is not allowed"):
+        bem.solve(penetration=0.5, speed=1.0, layer=layer)
+    assert bem.solve(penetration=0.49, speed=1.0, layer=layer, nodes=1024).success
+
+
+def test_a_load_that_pushes_through_the_layer_is_no_answer():
+    """Under load control the approach is known after the solve: a load whose crest reaches
+    the foundation (approach h ≥ d) is not a success, and says why; just below, it is."""
+    layer = bem.Layer(thickness=0.3, foundation="frictionless", nu=0.3)
+    deep = bem.solve(load=2.0, speed=1.0, layer=layer, nodes=1024)
+    assert deep.diagnostics["layer"]["approach"] >= 0.3
+    assert not deep.success and deep.status == 4
+    assert "reaches the foundation" in deep.message
+    shallow = bem.solve(load=0.05, speed=1.0, layer=layer, nodes=1024)
+    assert shallow.success and shallow.diagnostics["layer"]["approach"] < 0.3
+
+
+def test_the_record_carries_the_layer():
+    """as_dict: the layer at the top of the record (thickness, foundation, ν, the approach),
+    the same numbers as diagnostics["layer"]; no such key on the half-space."""
+    layer = bem.Layer(thickness_over_wavelength=0.25, foundation="bonded", nu=0.4)
+    r = bem.solve(load=0.2, speed=1.0, layer=layer, nodes=1024)
+    rec = r.as_dict()
+    assert rec["layer"] == r.diagnostics["layer"]
+    assert rec["layer"]["thickness_over_wavelength"] == 0.25
+    assert rec["layer"]["approach"] == pytest.approx(rec["penetration"]
+                                                     + rec["layer"]["mean_displacement"])
+    assert "layer" not in rec["diagnostics"]
+    assert "layer" not in bem.solve(load=0.2, speed=1.0, nodes=1024).as_dict()
