@@ -16,11 +16,13 @@ This package never imports `bem` (the two roads are independent).
 from viscosine import Fields
 
 from ._accepted import ACCEPTED, SPEED_MIN, validate
+from ._layer import layer_factor
 from ._result import Patch, Solution
 from .dimensional import solve_si
 from .fourier import fourier_solve
 from .full_contact import modulus, threshold_speed, transition_load
 from .solver import solve, sweep
 
-__all__ = ["ACCEPTED", "Fields", "Patch", "SPEED_MIN", "Solution", "fourier_solve", "modulus",
-           "solve", "solve_si", "sweep", "threshold_speed", "transition_load", "validate"]
+__all__ = ["ACCEPTED", "Fields", "Patch", "SPEED_MIN", "Solution", "fourier_solve", "layer_factor",
+           "modulus", "solve", "solve_si", "sweep", "threshold_speed", "transition_load",
+           "validate"]

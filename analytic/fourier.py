@@ -63,14 +63,29 @@ at the trailing edge, the creep operator applied to it, J(0+) d^p + Σ_i J_i L_i
 Memory layers shorter than a few points of the finest grid are not resolved
 (`memory_resolution`): such points are refused unless asked for.
 
+A layer of thickness d on a rigid foundation (``layer={"thickness": k d, "foundation": ...,
+"nu": ν}``) replaces the half-space: only E depends on the frequency, so mode n of C becomes
+
+    k v̂_n = (2/|n|) S(|n| k d, ν) J*(n) σ̂_n,
+
+S the layer factor of `analytic._layer` (solved there from Navier's equations), and the
+dissipation weighs mode n by S as well.  Δ/h keeps its meaning (from the mean line of the
+deformed surface); the uniform mode, finite on a layer, gives the mean displacement
+k v̄_0 = C (k d) J0 p̃ (relaxed J0: the mean pressure is static) and the approach of the
+indenter from the undeformed top face, Δ/h + v̄_0/h.  d is a length of the solution (the
+pressure varies over d at the edges of a thin layer's contact) that the grids must resolve
+like a memory layer (`thickness_resolution`).
+
 References
 ----------
 Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014: eqs (2.2)–(2.5) (the
 steady-sliding displacement), (3.1) (friction), Appendix A (the elastic limits) and Appendix B
-(full contact).
+(full contact).  The layer: Menga, Afferrante & Carbone, J. Mech. Phys. Solids 95 (2016)
+517–529.
 """
 from __future__ import annotations
 
+import dataclasses
 import math
 import time
 from dataclasses import dataclass, field
@@ -81,6 +96,8 @@ from scipy.optimize import brentq, minimize_scalar
 from scipy.special import dawsn
 
 from viscosine.checks import bad, integer, is_integer, real, series
+
+from ._layer import check_layer, describe, layer_factor
 
 _TWO_PI = 2.0 * math.pi
 
@@ -93,6 +110,14 @@ MIN_NODES = 64
 #: points per shortest memory layer below which a grid does not resolve it (measured: the
 #: standard linear solid with E∞/E0 = 100 meets the estimates at 3.9 points, not at 1.3)
 MIN_LAYER_POINTS = 4.0
+#: points of the finest grid per thickness d of a layer below which d is not resolved
+#: (`thickness_resolution`).  Measured against the BEM (rtol 1e-7 or 1e-8) over k d = 0.005 …
+#: 0.5, both foundations, V/V0 = 0.1, 1, 10, contacts of 4 % to 68 % of the period (414
+#: solves): with the default levels the true errors exceeded the estimates in 2 of 18 solves
+#: under 32 points per d (1.2 and 1.3 times, at 13 and 26 points), in none of 72 from 32 on;
+#: three levels (8 or 16 shifts) exceeded them in 5 of 126 under 32, 2 of 198 from 32 on (up to
+#: 2.3 times both)
+MIN_THICKNESS_POINTS = 32.0
 #: a patch narrower than this many points of the finest grid is not an answer (the edge fit
 #: and the shift average need points inside; measured at p̃ = 1e-6, 4 points: errors of 4e-6 in
 #: ka and 8e-5 in Δ/h, still within the estimates), and under four times as many is warned of
@@ -111,6 +136,12 @@ _MAX_ACTIVE_SET = 100
 _FIT_POWERS = (1.5, 2.5, 3.5, 4.5, 5.5, 6.5)
 _FIT_WINDOW = 0.25
 _FIT_MIN_POINTS = 24
+#: on a layer the fit window is also at most this many thicknesses d: the layer's kernel
+#: differs from the half-space's by a part analytic in a strip of half-width 2d only (S − 1
+#: ~ e^{−2|n|kd}), which bounds the expansion about an edge as the other edges do; a quarter
+#: of that radius, as _FIT_WINDOW (measured: at k d = 0.2 the uncapped window, ~1.2 d, left
+#: errors of 1e-6 in ka that did not fall with N and exceeded the estimates 2-4 times)
+_FIT_LAYER = 0.5
 
 
 # --------------------------------------------------------------------------------------------
@@ -307,15 +338,25 @@ def complex_modulus(modes, speed, **material_kw):
 # --------------------------------------------------------------------------------------------
 # Full contact in closed form (Appendix B)
 # --------------------------------------------------------------------------------------------
-def full_contact(speed, *, hk=1.0, load=None, **material_kw):
-    """Full contact of the sinusoid, for any material (Appendix B, one harmonic).
+def full_contact(speed, *, hk=1.0, load=None, layer=None, **material_kw):
+    """Full contact of the sinusoid, for any material (Appendix B, one harmonic), on the
+    half-space or on a layer.
 
-    With v = y − s on the whole period, k v̂_1 = hk/2 and s = 0, so σ̂_1 = (hk/4) E*(1) and
+    With v = y − s on the whole period, k v̂_1 = hk/2 and s = 0.  On a layer mode 1 of the
+    operator is 2 S J*(1), S = S(k d, ν) the layer factor (`layer_factor`), so
+    σ̂_1 = (hk/4) E*(1)/S (S = 1 on the half-space) and
 
-        σ = p̃ + (hk/2)|E*(1)| cos(2πX + arg E*(1)),
-        p̃FC = (hk/2)|E*(1)|                   (full contact iff p̃ ≥ p̃FC),
-        τ̃f = 4 Im J*(1) |σ̂_1|² = −(hk)²/4 Im E*(1),
-        kê = −arg E*(1)                       (the pressure maximum leads the crest).
+        σ = p̃ + (hk/2)|E*(1)|/S cos(2πX + arg E*(1)),
+        p̃FC = (hk/2)|E*(1)|/S                 (full contact iff p̃ ≥ p̃FC),
+        τ̃f = 4 S Im J*(1) |σ̂_1|² = −(hk)²/(4S) Im E*(1)   (Im J* |E*|² = −Im E*),
+        kê = −arg E*(1)                       (the pressure maximum leads the crest; S is
+                                               real, so the phase is the half-space's).
+
+    The dissipation of mode 1 carries one S (its displacement) and |σ̂_1|² two 1/S: a layer
+    stiffens the contact and raises the friction stress by 1/S, μ = τ̃f/p̃ at a given p̃.  The
+    mean displacement of the layer (its uniform mode, relaxed compliance J0 since the mean
+    pressure is static) is k v̄_0 = C (k d) J0 p̃ (`analytic._layer.uniform_compliance`), and
+    the approach of the crest from the undeformed top face is Δ/h + v̄_0/h = 1 + v̄_0/h.
 
     Parameters
     ----------
@@ -325,29 +366,55 @@ def full_contact(speed, *, hk=1.0, load=None, **material_kw):
         Amplitude h k > 0.
     load : float, optional
         p̃ (E_ref/(1 − ν²)); with it, ``mu`` = τ̃f/p̃ and whether the contact is full.
+    layer : mapping, optional
+        ``{"thickness": k d > 0, "foundation": "bonded" | "frictionless", "nu": ν}`` (see
+        `fourier_solve`); None (default) is the half-space.
     **material_kw
         ratio, creep or relaxation, as in `material`.
 
     Returns
     -------
     dict
-        ``load_threshold`` p̃FC, ``modulus`` E*(1) (complex), ``tau_f``, ``ke_hat``; with
-        ``load``: ``full_contact`` (p̃ ≥ p̃FC) and ``mu``.
+        ``load_threshold`` p̃FC, ``modulus`` E*(1) of the material (complex), ``tau_f``,
+        ``ke_hat``; with ``load``: ``full_contact`` (p̃ ≥ p̃FC) and ``mu``.  With a layer also
+        ``layer_factor`` S(k d) and, with ``load``, ``mean_displacement`` v̄_0/h and
+        ``approach`` 1 + v̄_0/h.
 
     References
     ----------
-    Appendix B (eqs B1–B8) of the paper.
+    Appendix B (eqs B1–B8) of the paper; the layer factor: Menga, Afferrante & Carbone (2016).
     """
     w = real("speed", speed, "a finite speed V τ_ref k ≥ 0", lambda v: v >= 0.0)
     hk = real("hk", hk, "a finite amplitude hk > 0", lambda v: v > 0.0)
-    e1 = complex(material(**material_kw).estar(np.array([1.0]), w)[0])
+    mat = material(**material_kw)
+    lay = check_layer(layer)
+    e1 = complex(mat.estar(np.array([1.0]), w)[0])
     out = {"load_threshold": 0.5 * hk * abs(e1), "modulus": e1,
            "tau_f": -0.25 * hk * hk * e1.imag, "ke_hat": -math.atan2(e1.imag, e1.real)}
+    if lay is not None:
+        s1 = layer_factor(lay["thickness"], lay["nu"], lay["foundation"])
+        out["layer_factor"] = s1
+        out["load_threshold"] /= s1
+        out["tau_f"] /= s1
     if load is not None:
         p = real("load", load, "a finite mean pressure > 0", lambda v: v > 0.0)
         out["full_contact"] = p >= out["load_threshold"]
         out["mu"] = out["tau_f"] / p
+        if lay is not None:
+            out["mean_displacement"] = _mean_displacement(lay, mat, p, hk)
+            out["approach"] = 1.0 + out["mean_displacement"]
     return out
+
+
+def _relaxed_compliance(mat):
+    """J0 = J(t → ∞) (the creep form's base, or 1/E_r)."""
+    return mat.base if mat.form == "creep" else 1.0 / mat.base
+
+
+def _mean_displacement(lay, mat, p, hk):
+    """v̄_0/h: k v̄_0 = C (k d) J0 p̃ over hk (C of `describe`, relaxed J0)."""
+    return describe(lay)["uniform_compliance"] * lay["thickness"] * _relaxed_compliance(mat) \
+        * p / hk
 
 
 # --------------------------------------------------------------------------------------------
@@ -437,16 +504,21 @@ class _Grid:
     complementarity: float
 
 
-def _solve_grid(n, phi, mat, w, hk, control, value, patches):
-    """Active-set solve on one shifted grid, started from the patches [(x_t, x_l), ...]."""
+def _solve_grid(n, phi, mat, w, hk, control, value, patches, factor=None):
+    """Active-set solve on one shifted grid, started from the patches [(x_t, x_l), ...].
+
+    ``factor``: the layer factor S of the modes 0 … N/2 (None: the half-space)."""
     x = -0.5 + (np.arange(n) + phi) / n
     y = hk * np.cos(_TWO_PI * x)
     modes = np.arange(n // 2 + 1, dtype=float)
     sym = np.zeros(modes.size, dtype=complex)
     sym[1:] = (2.0 / modes[1:]) * mat.jstar(modes[1:], w)
+    if factor is not None:
+        sym[1:] *= factor[1:]
     # C has no mode 0 (v from its mean line), so it is singular and its restriction to a
     # near-full contact nearly so.  The solves use C' = C + c0·mean, mode 0 given the symbol
-    # c0 = 2 Re J*(1) of the scale of mode 1: C'σ = Cσ + c0 mean(σ), which only moves s.
+    # c0 = 2 Re J*(1) (times S(kd) on a layer) of the scale of mode 1: C'σ = Cσ + c0 mean(σ),
+    # which only moves s.
     c0 = float(sym[1].real)
     sym[0] = c0
     col = np.fft.irfft(sym, n)        # C'[i, j] = col[(i − j) mod n]; Nyquist: its real part
@@ -585,14 +657,15 @@ def _fit_edge(xs, g, lo, hi, side, trailing, creep, nbasis):
     return float(res.x)
 
 
-def _edges(grid, s0, length, gap_before, gap_after, creep):
+def _edges(grid, s0, length, gap_before, gap_after, creep, reach=None):
     """Trailing and leading edges (unwrapped x/λ) of the run of `length` points from s0.
 
     gap_before/gap_after: the gap points between this run and its neighbours (the run's own
     other end for a single patch).  The fit window is a quarter of the shorter of the contact
     and the gap region (the distance to the nearest other edge, which bounds the expansion),
-    at least _FIT_MIN_POINTS points, skipping the first gap point (the discretisation error
-    is largest there).  Returns (x_t, x_l, fitted).
+    and no more than ``reach`` points on a layer (its expansion converges within about 2d
+    there, `_FIT_LAYER`), at least _FIT_MIN_POINTS points, skipping the first gap point (the
+    discretisation error is largest there).  Returns (x_t, x_l, fitted).
     """
     n = grid.n
     h = 1.0 / n
@@ -601,7 +674,10 @@ def _edges(grid, s0, length, gap_before, gap_after, creep):
     fitted = True
     out = []
     for side, room in ((-1, gap_before), (+1, gap_after)):
-        k = max(_FIT_MIN_POINTS, int(round(_FIT_WINDOW * min(length, room))))
+        k = _FIT_WINDOW * min(length, room)
+        if reach is not None:
+            k = min(k, reach)
+        k = max(_FIT_MIN_POINTS, int(round(k)))
         k = min(k, (room - 1) // 2)
         m = np.arange(2, k + 2)
         if side > 0:
@@ -624,8 +700,11 @@ def _edges(grid, s0, length, gap_before, gap_after, creep):
     return out[0], out[1], fitted
 
 
-def _grid_scalars(grid, mat, w, hk, creep):
-    """The scalars of one grid, and its patches [(x_t, x_l, load, centroid)]."""
+def _grid_scalars(grid, mat, w, hk, creep, factor=None, reach=None):
+    """The scalars of one grid, and its patches [(x_t, x_l, load, centroid)].
+
+    ``factor``: the layer factor of the modes 0 … N/2 and ``reach`` the widest edge fit in
+    points (None, None: the half-space)."""
     n = grid.n
     sig = grid.sigma
     shat = np.fft.rfft(sig) / n
@@ -634,6 +713,8 @@ def _grid_scalars(grid, mat, w, hk, creep):
     weight[0] = 0.0
     if n % 2 == 0:
         weight[-1] = 0.0   # the Nyquist mode is real in C: it dissipates nothing
+    if factor is not None:
+        weight = weight * factor   # a mode's displacement, so its dissipation, carries S
     tau = float(np.sum(weight * 4.0 * mat.jstar(modes, w).imag * np.abs(shat) ** 2))
     load = float(np.mean(sig))
     out = {"load": load, "penetration": 1.0 - grid.s / hk, "tau_f": tau,
@@ -651,7 +732,7 @@ def _grid_scalars(grid, mat, w, hk, creep):
         nxt = runs[(i + 1) % len(runs)][0]
         before = (s0 - prev_end) % n
         after = (nxt - (s0 + length)) % n
-        xt, xl, ok = _edges(grid, s0, length, before, after, creep)
+        xt, xl, ok = _edges(grid, s0, length, before, after, creep, reach)
         fitted &= ok
         pts = (s0 + np.arange(length)) % n
         xr = grid.x[s0] + np.arange(length) / n
@@ -688,18 +769,25 @@ _FLOOR = {"load": 1e-13, "penetration": 1e-13, "tau_f": 1e-13, "mu": 1e-13,
           "contact_fraction": 4e-9, "ka": 1e-8, "ke": 1e-8, "ke_hat": 1e-12}
 
 
-def _level(n, shifts, mat, w, hk, control, value, patches):
-    """One level: the same N on `shifts` shifted grids, averaged (trapezoidal rule in φ)."""
+def _level(n, shifts, mat, w, hk, control, value, patches, factor=None, thickness=None):
+    """One level: the same N on `shifts` shifted grids, averaged (trapezoidal rule in φ).
+
+    ``factor``: the layer factor S of the modes 0, 1, … (at least N/2 + 1 of them) and
+    ``thickness`` d/λ of the layer (None, None: the half-space)."""
+    reach = None
+    if factor is not None:
+        factor = factor[:n // 2 + 1]
+        reach = _FIT_LAYER * thickness * n
     rows, pats, grids = [], [], []
     fitted = True
     jplus, terms = mat.creep_terms()
     creep = (jplus, tuple((j, w * t / _TWO_PI) for j, t in terms))  # lengths L_i in x/λ
     for k in range(shifts):
-        grid = _solve_grid(n, k / shifts, mat, w, hk, control, value, patches)
+        grid = _solve_grid(n, k / shifts, mat, w, hk, control, value, patches, factor)
         grids.append(grid)
         if not grid.converged:
             break
-        sc, pt, ok = _grid_scalars(grid, mat, w, hk, creep)
+        sc, pt, ok = _grid_scalars(grid, mat, w, hk, creep, factor, reach)
         fitted &= ok
         rows.append(sc)
         pats.append(pt)
@@ -835,6 +923,15 @@ class FourierResult:
         mean line of the deformed surface); in full contact the closed form on 1024 points.
     elapsed : float
         Wall time of the solve, seconds.
+    layer : dict or None
+        None on the half-space; on a layer its description: ``thickness`` (k d),
+        ``thickness_over_wavelength`` (d/λ), ``foundation``, ``nu``, ``uniform_compliance`` (C
+        of the uniform mode) and ``factor_mode_1`` (S(k d)).
+    mean_displacement, approach : float or None
+        On a layer (None on the half-space): v̄_0/h, the mean displacement of the top face
+        under the mean pressure (k v̄_0 = C (k d) J0 p̃, relaxed J0), and Δ/h + v̄_0/h, the
+        indenter's approach from the undeformed top face over h (the BEM's
+        ``diagnostics["layer"]``).  Their relative estimates are in ``error_estimate``.
     """
 
     success: bool
@@ -868,6 +965,9 @@ class FourierResult:
     displacement: np.ndarray = field(repr=False)
     elapsed: float = 0.0
     warnings: tuple = ()
+    layer: dict | None = None
+    mean_displacement: float | None = None
+    approach: float | None = None
 
     def scalars(self):
         """The eight scalars of the conventions, as a dict."""
@@ -899,6 +999,9 @@ class FourierResult:
                     "extrapolated": self.extrapolated, "nodes": self.nodes,
                     "shifts": self.shifts, "patches": self.patches, "elapsed": self.elapsed,
                     "levels": [{k: v for k, v in lv.items()} for lv in self.levels]})
+        if self.layer is not None:  # the half-space's record is unchanged
+            out.update({"layer": self.layer, "mean_displacement": self.mean_displacement,
+                        "approach": self.approach})
         return plain(out)
 
 
@@ -962,8 +1065,38 @@ def memory_resolution(speed, nodes, **material_kw):
     return length, length * nodes >= MIN_LAYER_POINTS
 
 
+def thickness_resolution(thickness, nodes):
+    """The thickness d/λ of a layer and whether `nodes` points per period resolve it.
+
+    d is a length of the solution: the layer's kernel differs from the half-space's by a part
+    that is smooth over d only (S − 1 decays like e^{−2|n|kd}), so the pressure of a thin
+    layer's contact changes its form over d at the edges (from the half-space's square root
+    to the thin layer's own), and the edge fit, whose expansion about an edge converges
+    within about 2d, is narrowed to d/2 (`_FIT_LAYER`) once the grid has the points.  A grid
+    with fewer than `MIN_THICKNESS_POINTS` points across d is not trusted (measured against
+    the BEM: see the constant).
+
+    Parameters
+    ----------
+    thickness : float
+        k d > 0.
+    nodes : int
+        Points per period of the finest grid.
+
+    Returns
+    -------
+    length, resolved : float, bool
+        d/λ and whether ``length * nodes >= MIN_THICKNESS_POINTS``.
+    """
+    kd = real("thickness", thickness, "a finite thickness k d > 0", lambda v: v > 0.0,
+              kind=True)
+    length = kd / _TWO_PI
+    return length, length * nodes >= MIN_THICKNESS_POINTS
+
+
 def fourier_solve(*, load=None, penetration=None, speed, ratio=None, creep=None,
-                  relaxation=None, hk=1.0, nodes=NODES, shifts=SHIFTS, require_resolved=True):
+                  relaxation=None, hk=1.0, nodes=NODES, shifts=SHIFTS, require_resolved=True,
+                  layer=None):
     """Steady sliding of the sinusoid over any Prony-series material, by Fourier collocation.
 
     Parameters
@@ -985,16 +1118,24 @@ def fourier_solve(*, load=None, penetration=None, speed, ratio=None, creep=None,
     shifts : int
         Grids per level, shifted by 1/shifts of a spacing and averaged (1 … 64); default 16.
     require_resolved : bool
-        True (default): a point whose shortest memory layer the finest grid does not resolve
-        (`memory_resolution`) is not solved and the result is not a success.  False solves it
-        anyway, with a warning: its errors may then exceed the estimates.
+        True (default): a point whose shortest memory layer (`memory_resolution`) or whose
+        layer thickness (`thickness_resolution`) the finest grid does not resolve is not
+        solved and the result is not a success.  False solves it anyway, with a warning: its
+        errors may then exceed the estimates.  Full contact (closed form) is exempt.
+    layer : mapping, optional
+        A layer of thickness d on a rigid foundation in place of the half-space:
+        ``{"thickness": k d (finite, > 0), "foundation": "bonded" (u_x = u_z = 0 at the
+        bottom) or "frictionless" (u_z = 0 and no shear there), "nu": ν in (−1, 0.5]}``.
+        Mode n of the operator is the half-space's times S(|n| k d, ν) (`layer_factor`); the
+        scalars keep their meaning and the result adds ``layer``, ``mean_displacement`` and
+        ``approach``.  None (default): the half-space, answered exactly as without it.
 
     Returns
     -------
     FourierResult
-        ``success`` False, with the reason in ``message``, when the memory is not resolved, a
-        grid did not converge or the grids disagree on the contact (a point within a grid
-        spacing of a transition); never raises for valid input.
+        ``success`` False, with the reason in ``message``, when the memory or the layer is not
+        resolved, a grid did not converge or the grids disagree on the contact (a point within
+        a grid spacing of a transition); never raises for valid input.
 
     Raises
     ------
@@ -1004,7 +1145,8 @@ def fourier_solve(*, load=None, penetration=None, speed, ratio=None, creep=None,
     References
     ----------
     Eqs (2.2)–(2.5), (3.1) and Appendix B of Menga, Putignano, Carbone & Demelio, Proc. R.
-    Soc. A 470, 20140392, 2014.
+    Soc. A 470, 20140392, 2014; the layer: Menga, Afferrante & Carbone, J. Mech. Phys. Solids
+    95 (2016) 517–529.
     """
     t0 = time.perf_counter()
     if (load is None) == (penetration is None):
@@ -1025,38 +1167,83 @@ def fourier_solve(*, load=None, penetration=None, speed, ratio=None, creep=None,
                      lambda v: 1 <= v <= 64)
     if not isinstance(require_resolved, bool):
         raise bad("require_resolved", require_resolved, "True or False")
+    lay = check_layer(layer)
     kw = _material_kw(mat)
-    fc = full_contact(w, hk=hk, **kw)
+    fc = full_contact(w, hk=hk, layer=lay, **kw)
     common = {"control": control, "asked": value, "speed": w, "hk": hk,
               "material": mat.as_dict(), "nodes": levels_n, "shifts": shifts}
+    if lay is not None:
+        common["layer"] = describe(lay)
     if control == "load" and value >= fc["load_threshold"]:
-        return _full_result(value, fc, common, t0)
+        return _on_layer(_full_result(value, fc, common, t0), lay, mat)
     if control == "penetration" and value == 1.0:
-        return _full_result(fc["load_threshold"], fc, common, t0)
+        return _on_layer(_full_result(fc["load_threshold"], fc, common, t0), lay, mat)
     warnings = []
     length, resolved = memory_resolution(w, levels_n[-1], **kw)
+    unresolved = []
     if not resolved:
-        text = (f"the shortest memory layer, w θ_min/(2π) = {length:.3g} λ, spans "
-                f"{length * levels_n[-1]:.3g} points of the finest grid ({levels_n[-1]}), under "
-                f"the {MIN_LAYER_POINTS} that resolve it")
+        unresolved.append(f"the shortest memory layer, w θ_min/(2π) = {length:.3g} λ, spans "
+                          f"{length * levels_n[-1]:.3g} points of the finest grid "
+                          f"({levels_n[-1]}), under the {MIN_LAYER_POINTS} that resolve it")
+    factor = thickness = None
+    if lay is not None:
+        d, resolved = thickness_resolution(lay["thickness"], levels_n[-1])
+        if not resolved:
+            unresolved.append(f"the layer's thickness, d = {d:.3g} λ, spans "
+                              f"{d * levels_n[-1]:.3g} points of the finest grid "
+                              f"({levels_n[-1]}), under the {MIN_THICKNESS_POINTS} that "
+                              "resolve it")
+        thickness = d
+        top = max(levels_n[-1], _START_NODES) // 2
+        factor = layer_factor(np.arange(top + 1) * lay["thickness"], lay["nu"],
+                              lay["foundation"])
+    for text in unresolved:
         if require_resolved:
-            return _failed(common, text + "; not solved (require_resolved=False solves it, "
-                           "with errors that may exceed the estimates)", [], t0)
+            return _on_layer(_failed(common, text + "; not solved (require_resolved=False "
+                                     "solves it, with errors that may exceed the estimates)",
+                                     [], t0), lay, mat)
         warnings.append(text + ": errors may exceed the estimates")
-    patches = _westergaard_start(control, value, hk, fc["modulus"])
+    # the start: Westergaard's contact with mode 1's modulus (the layer's, |E*(1)|/S(kd))
+    e1 = fc["modulus"] if lay is None else fc["modulus"] / fc["layer_factor"]
+    patches = _westergaard_start(control, value, hk, e1)
     target = value if control == "load" else hk * (1.0 - value)   # the load, or s in 1/k
     if levels_n[0] > _START_NODES:
-        start = _level(_START_NODES, 1, mat, w, hk, control, target, patches)
+        start = _level(_START_NODES, 1, mat, w, hk, control, target, patches, factor,
+                       thickness)
         if start["patches"]:
             patches = start["patches"]
     levels = []
     for n in levels_n:
-        lv = _level(n, shifts, mat, w, hk, control, target, patches)
+        lv = _level(n, shifts, mat, w, hk, control, target, patches, factor, thickness)
         levels.append(lv)
         if lv["message"]:
-            return _failed(common, lv["message"], levels, t0)
+            return _on_layer(_failed(common, lv["message"], levels, t0), lay, mat)
         patches = [(p[0], p[1]) for p in lv["avg_patches"]]
-    return _partial_result(levels, common, warnings, t0)
+    return _on_layer(_partial_result(levels, common, warnings, t0), lay, mat)
+
+
+def _on_layer(res, lay, mat):
+    """The result with the layer's uniform mode: ``mean_displacement`` v̄_0/h (k v̄_0 =
+    C (k d) J0 p̃) and ``approach`` Δ/h + v̄_0/h, with their relative estimates (v̄_0 ∝ p̃, so
+    the load's; the approach's from the two absolute errors).  The half-space: unchanged."""
+    if lay is None:
+        return res
+    mean = _mean_displacement(lay, mat, res.load, res.hk)
+    approach = res.penetration + mean
+    est = dict(res.error_estimate)
+    if "penetration" in est:   # a solved point (full contact: exact, the load's estimate 0)
+        est.setdefault("load", 0.0)
+        est["mean_displacement"] = est["load"]
+        est["approach"] = ((est["penetration"] * abs(res.penetration) + est["load"] * abs(mean))
+                           / abs(approach) if approach != 0.0 else math.inf)
+    warnings = res.warnings
+    if approach * res.hk >= lay["thickness"]:
+        # linear theory has no such limit (the answer stands), the body has
+        warnings += (f"the indenter's approach {approach:.4g} h reaches the foundation at "
+                     f"d = {lay['thickness'] / res.hk:.4g} h (k d = {lay['thickness']:g}, "
+                     f"hk = {res.hk:g}): small strains no longer hold",)
+    return dataclasses.replace(res, mean_displacement=mean, approach=approach,
+                               error_estimate=est, warnings=warnings)
 
 
 def _material_kw(mat):
@@ -1094,7 +1281,10 @@ def _full_result(p, fc, common, t0):
     hk = common["hk"]
     x = np.arange(1024) / 1024 - 0.5
     e1 = fc["modulus"]
-    sigma = p + 0.5 * hk * abs(e1) * np.cos(_TWO_PI * x + math.atan2(e1.imag, e1.real))
+    amplitude = 0.5 * hk * abs(e1)
+    if "layer_factor" in fc:
+        amplitude = amplitude / fc["layer_factor"]   # σ̂_1 = (hk/4) E*(1)/S
+    sigma = p + amplitude * np.cos(_TWO_PI * x + math.atan2(e1.imag, e1.real))
     zero = {k: 0.0 for k in _RELATIVE + ("ka", "ke_hat")}
     centroid = _wrap(fc["ke_hat"] / _TWO_PI)
     patch = {"trailing_edge": centroid - 0.5, "leading_edge": centroid + 0.5, "width": 1.0,
