@@ -11,8 +11,9 @@ that the call shape of each road (its keywords, tolerances and input objects) li
   figures the last line of defence, `comparisons.gate`, checks: a `Solved`).  They pass the
   user's values as given, so that the road's own refusal names them as typed;
 - operating points as plain dicts of numbers (the suite, verify, the report, the cross-check,
-  the peers): `analytic_solution`, `fourier_solution`, `bem_solution` (values as floats),
-  `transition_load`, `threshold_speed`;
+  the peers): `analytic_solution`, `fourier_solution`, `bem_solution` (values as floats; a
+  point's ``layer`` is a plain description, turned into each road's own by `layer` and the
+  reference's mapping), `transition_load`, `threshold_speed`, `full_contact_load`;
 - the BEM's inputs: `read_profile`, `read_prony` (the BEM's readers: the one definition of each
   file format), `sinusoid`, `standard_linear_solid`, `prony`;
 - `source_hash`: the two roads' source, on which a certified result depends.
@@ -28,6 +29,7 @@ directly.
 from __future__ import annotations
 
 import hashlib
+import math
 from pathlib import Path
 from typing import NamedTuple
 
@@ -78,7 +80,29 @@ def _bem_kwargs(spec, problem):
     for name in ("nodes", "rtol", "max_nodes"):
         if spec.get(name) is not None:
             kw[name] = spec[name]
+    if spec.get("layer") is not None:
+        kw["layer"] = layer(spec["layer"])
     return kw
+
+
+def layer(description):
+    """The BEM's layer (``bem.Layer``) of a plain description: ``foundation``, ``nu`` and one of
+    ``thickness_over_wavelength`` (d/λ) and ``thickness`` (k d), as given (the Layer refuses,
+    naming the parameter)."""
+    import bem
+    return bem.Layer(**{k: description.get(k) for k in ("thickness", "thickness_over_wavelength",
+                                                        "foundation", "nu")})
+
+
+def _analytic_layer(description):
+    """The Fourier reference's layer mapping (k d, foundation, ν) of a plain description."""
+    if description is None:
+        return None
+    kd = description.get("thickness")
+    if kd is None:
+        kd = 2.0 * math.pi * float(description["thickness_over_wavelength"])
+    return {"thickness": float(kd), "foundation": description["foundation"],
+            "nu": float(description["nu"])}
 
 
 def validate_analytic(spec):
@@ -88,7 +112,9 @@ def validate_analytic(spec):
 
 
 def validate_bem(spec, problem):
-    """``bem.validate`` on a spec and its ``problem`` (see `bem_record`)."""
+    """``bem.validate`` on a spec and its ``problem`` (see `bem_record`); a spec's ``layer``
+    is checked there too (its thickness, foundation and ν, the mesh it allows, the depth a
+    penetration reaches)."""
     import bem
     bem.validate(**_bem_kwargs(spec, problem))
 
@@ -177,22 +203,36 @@ def fourier_solution(point, material):
     roads solve the same material).
 
     ``require_resolved=False``: broad spectra have memory layers far below any grid, which the
-    reference's estimates and refusals judge, not a blanket refusal.
+    reference's estimates and refusals judge, not a blanket refusal.  A point's ``layer`` (a
+    plain description, see `layer`) puts the same layer under both codes.
     """
     import analytic
+    kw = {} if point.get("layer") is None else {"layer": _analytic_layer(point["layer"])}
     return analytic.fourier_solve(**point_controls(point), speed=float(point["speed"]),
                                   creep=(float(material.J0), tuple(float(j) for j in material.J),
                                          tuple(float(t) for t in material.tau)),
-                                  hk=float(point.get("hk", 1.0)), require_resolved=False)
+                                  hk=float(point.get("hk", 1.0)), require_resolved=False, **kw)
 
 
 def bem_solution(point, nodes, problem):
     """The BEM solution at an operating point dict on ``nodes`` panels (Krylov tolerance
-    `BEM_TOL`); ``problem`` is ``(profile, material)``, the BEM's objects."""
+    `BEM_TOL`); ``problem`` is ``(profile, material)``, the BEM's objects; the point's
+    ``layer`` (a plain description, see `layer`), if any, is under the profile."""
     import bem
     profile, material = problem
+    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
     return bem.solve(profile=profile, material=material, speed=float(point["speed"]),
-                     nodes=int(nodes), tol=BEM_TOL, **point_controls(point))
+                     nodes=int(nodes), tol=BEM_TOL, **point_controls(point), **kw)
+
+
+def full_contact_load(speed, ratio, hk, layer_description=None):
+    """p̃FC(V) of the sinusoid on the standard linear solid ``ratio``, on the half-space or on a
+    layer (a plain description, see `layer`): the closed form ``analytic.full_contact``
+    (Appendix B; on a layer mode 1 carries the factor S(kd))."""
+    from analytic.fourier import full_contact
+    kw = {} if layer_description is None else {"layer": _analytic_layer(layer_description)}
+    return float(full_contact(float(speed), hk=float(hk), ratio=float(ratio),
+                                       **kw)["load_threshold"])
 
 
 def transition_load(speed, ratio, hk):

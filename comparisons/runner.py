@@ -73,7 +73,7 @@ def public(spec):
 
 def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=None, nodes=None,
             rtol=None, max_nodes=None, profile=None, prony=None, fields=False, files=None,
-            material=None, material_options=None, si=None):
+            material=None, material_options=None, si=None, layer=None):
     """Command-line options (None = not given) → spec, with the defaults applied here only.
 
     Options that do not apply to the chosen inputs are refused, never recorded as if used:
@@ -95,6 +95,9 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
         material (None = not given); only with ``material``; ``si`` True reads the file in SI.
     si : dict, optional
         ``--units SI``: the ``si`` description of `resolve_si` (the values are then its groups).
+    layer : dict, optional
+        ``--thickness``: ``{"thickness_over_wavelength", "foundation", "nu"}``, BEM only; the
+        spec's ``layer`` (checked by the BEM's Layer in `validate`).
 
     Raises
     ------
@@ -112,6 +115,9 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
         refuse("--material", "--prony gives the material already (--material reads the same "
                "creep-series files, and relaxation series and DMA curves)")
     if solver == "analytic":
+        if layer is not None:
+            refuse("--thickness", "a BEM option (the semi-analytic road solves the half-space; "
+                   "use --solver bem)")
         if profile is not None or prony is not None or material is not None:
             refuse("--profile" if profile is not None else (
                    "--prony" if prony is not None else "--material"),
@@ -141,6 +147,8 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     spec.update(solver=solver, load=load, penetration=penetration, speed=speed)
     if si is not None:  # only then: the spec of every other point keeps its keys (and hash)
         spec["si"] = si
+    if layer is not None:  # likewise
+        spec["layer"] = dict(layer)
     if solver == "analytic":
         spec["ratio"] = DEFAULTS["ratio"] if ratio is None else ratio
         spec["hk"] = DEFAULTS["hk"] if hk is None else hk
@@ -281,6 +289,9 @@ def si_block(rec, info):
         "mean_separation", "mean_pressure", "friction_stress", "friction_coefficient",
         "max_pressure", "x_max_pressure", "wavelength", "amplitude", "plane_strain_modulus")}
     out["speed"] = rec["speed"] / (info["tau_ref"] * k)
+    if rec.get("layer"):  # the layer's thickness and the indenter's approach, in m
+        out["thickness"] = rec["layer"]["thickness_over_wavelength"] * lam
+        out["approach"] = rec["layer"]["approach"] * h
     out["units"] = "m, Pa, m/s"
     return out
 
@@ -535,6 +546,12 @@ def fields_header(record, spec, fields):
                      f" log10_aT={m['log10_aT']!r}")
     if record.get("time_unit"):
         lines.append(f"time: {record['time_unit']}")
+    if record.get("layer"):
+        lay = record["layer"]
+        lines.append(f"layer: d/lambda={lay['thickness_over_wavelength']!r} "
+                     f"kd={lay['thickness']!r} foundation={lay['foundation']} nu={lay['nu']!r} "
+                     f"approach/h={lay['approach']!r} (the indenter's, from the undeformed "
+                     "top face)")
     lines += [f"points: {n}", GRID_UNIFORM if uniform else GRID_NON_UNIFORM,
               "units: x_over_lambda = x/lambda (crest at 0); pressure = sigma (1 - nu^2)/E0; "
               "displacement = v/h (into the body, from the mean line of the deformed surface); "

@@ -168,6 +168,13 @@ def solver_options(p, several):
     shift.add_argument("--shift-table", action=Once, metavar="FILE",
                        help="shift table CSV (columns temperature, log_aT), linear in log10 a_T, "
                             "no extrapolation")
+    p.add_argument("--thickness", type=number, action=Once, metavar="D",
+                   help="BEM only: a layer of thickness d on a rigid foundation in place of the "
+                        "half-space, D = d/λ (with --units SI, d [m]); needs --foundation and "
+                        "--nu; docs/layers.md")
+    p.add_argument("--foundation", choices=["bonded", "frictionless"], action=Once,
+                   help="with --thickness: the layer's lower face bonded to the foundation, or "
+                        "lying on it without friction")
     p.add_argument("--units", choices=["conventions", "SI"], action=Once,
                    help="SI: --load is p∞ [Pa] (--penetration Δ [m]), --speed V [m/s], with "
                         "--nu, --wavelength, --amplitude and the material (--E0 --Einf with "
@@ -180,7 +187,8 @@ def solver_options(p, several):
                                "the solid, eq. (2.3); the speed group is V τ k"),
                               (("--tau-relax",), "s", "relaxation time of the solid, τ E0/Einf "
                                "(instead of --tau-creep)"),
-                              (("--nu",), "-", "Poisson's ratio"),
+                              (("--nu",), "-", "Poisson's ratio (also, with --thickness, "
+                               "the layer's: its factor S(kd, ν))"),
                               (("--wavelength",), "m", "λ of the sinusoid"),
                               (("--amplitude",), "m", "h of the sinusoid")):
         p.add_argument(*names, type=number, action=Once, metavar="X",
@@ -243,7 +251,32 @@ def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=Non
                           fields=args.fields is not None, files=files, material=args.material,
                           material_options={**material_options(args),
                                             "si": args.units == "SI" or None},
-                          si=si)
+                          si=si, layer=layer_options(args, si))
+
+
+def layer_options(args, si):
+    """``{"thickness_over_wavelength", "foundation", "nu"}`` of --thickness, --foundation and
+    --nu (None without --thickness); with --units SI the thickness [m] over the wavelength.
+    The values as given: `runner.resolve` and the BEM's Layer check them."""
+    if args.thickness is None:
+        if args.foundation is not None:
+            raise BadInput(f"--foundation {args.foundation} is not allowed without --thickness: "
+                           "it is the lower face of a layer (give its thickness with "
+                           "--thickness)")
+        return None
+    if args.foundation is None:
+        raise BadInput("--foundation is missing: --thickness needs it (bonded or frictionless: "
+                       "the layer's lower face on the rigid foundation)")
+    if args.nu is None:
+        raise BadInput("--nu is missing: --thickness needs the layer's Poisson ratio, in "
+                       "(-1, 0.5] (its factor S(kd, ν))")
+    d = args.thickness
+    if si is not None:
+        if not (math.isfinite(d) and d > 0.0):
+            raise BadInput(f"--thickness {d!r} is not allowed: a finite layer thickness d > 0 "
+                           "[m] (--units SI)")
+        d = d / si["wavelength"]
+    return {"thickness_over_wavelength": d, "foundation": args.foundation, "nu": args.nu}
 
 
 def units_si(args, files):
@@ -252,7 +285,8 @@ def units_si(args, files):
     given = {k: getattr(args, k) for k in ("E0", "Einf", "tau_creep", "tau_relax", "nu",
                                            "wavelength", "amplitude")}
     if args.units != "SI":
-        extra = [k for k, v in given.items() if v is not None]
+        extra = [k for k, v in given.items() if v is not None
+                 and not (k == "nu" and args.thickness is not None)]  # a layer's ν
         if extra:
             raise BadInput(f"--{extra[0].replace('_', '-')} is not allowed without --units SI: "
                            "an SI input (the conventions' groups need none)")
@@ -300,6 +334,11 @@ def _option_names(text):
     """'max_nodes=…' in a road's message becomes '--max-nodes …' (the option the user typed)."""
     m = re.match(r"(\w+)=(\S+) is not allowed", text)
     if m and m.group(1) in ("load", "penetration", "speed", "ratio", "hk", "nodes", "rtol",
-                            "max_nodes"):
+                            "max_nodes", "foundation", "nu"):
         return f"--{m.group(1).replace('_', '-')} {m.group(2)}{text[m.end(2):]}"
+    if m and m.group(1) == "thickness_over_wavelength":
+        return f"--thickness (d/λ) {m.group(2)}{text[m.end(2):]}"
+    m = re.match(r"layer=Layer\(.*?\) is not allowed", text)
+    if m:  # the layer as a whole: its thickness is the option at fault
+        return "--thickness is not allowed" + text[m.end():]
     return text
