@@ -338,3 +338,269 @@ def tamaas_study(store, cfg):
                        "cells_per_step": list(peer.CELLS_PER_STEP)},
             "peak_speed": peak, "peak_mu": peak_mu, "summary": summary, "seconds": total,
             "tamaas_version": peer.tamaas_version()}
+
+
+# ---------------------------------------------------------------------------- a layer
+#: the layer section's operating point: the report's load of figure 12 (and of the README)
+LAYER_LOAD = 0.3
+#: Poisson ratio of every layer of the section.  The bonded layer's factor S_B and its uniform
+#: mode depend on ν (½: incompressible, the stiffest thin layer); the frictionless layer's S_F and
+#: its uniform compression (free ends: C = 1 in (1 − ν²)d/E) do not, so that in the report's
+#: dimensionless numbers (p̃ = p(1 − ν²)/E0) a frictionless layer's answer is the same for
+#: every ν (docs/layers.md §1, §4; tests/test_report_layers.py checks it bit for bit)
+LAYER_NU = 0.5
+#: d/λ of the friction and contact figures, per foundation (None: the half-space).  At
+#: p̃∞ = 0.3 a frictionless layer thinner than d/λ ≈ 0.15 is compressed as a whole so far
+#: (its uniform mode: strain p̃∞ with free ends) that below V/V0 ≈ 1 the indenter's crest
+#: would reach the foundation (the BEM refuses such an answer; measured at N = 4096: d/λ = 0.1
+#: from V/V0 ≤ 0.56, d/λ = 0.05 from V/V0 ≤ 1.8), so its panel starts at d/λ = 0.2
+LAYER_THICKNESSES = {"bonded": (0.05, 0.1, 0.2, 0.5, 1.0, None),
+                     "frictionless": (0.2, 0.5, 1.0, None)}
+#: the full-contact figure: closed-form curves of p̃FC against d/λ at these speeds, BEM markers
+#: (Δ/h = 1) at `LAYER_FC_MARKERS`
+LAYER_FC_SPEEDS = (0.01, 1.0, 100.0)
+LAYER_FC_MARKERS = (0.02, 0.05, 0.1, 0.2, 0.5, 1.0)
+LAYER_FC_CURVE = np.logspace(math.log10(0.02), math.log10(2.0), 61)
+#: amplitude of the BEM's full-contact markers.  Full contact is linear in the amplitude (σ =
+#: p̃∞ + hk × a function of V and kd: Appendix B), so p̃FC/hk does not depend on hk; at hk = 1
+#: the crest of most of these layers would reach the foundation (`full_contact_clears`), at
+#: hk = 0.01 it clears every one of them (the thinnest, frictionless d/λ = 0.02 at V/V0 = 100,
+#: needs hk < 0.03)
+LAYER_FC_HK = 0.01
+
+
+def layer_description(d_over_lambda, foundation):
+    """The plain description of the section's layer (`comparisons.roads.layer`); None for the
+    half-space (``d_over_lambda`` None)."""
+    if d_over_lambda is None:
+        return None
+    return {"thickness_over_wavelength": float(d_over_lambda), "foundation": foundation,
+            "nu": LAYER_NU}
+
+
+def layer_spec(load=None, speed=1.0, nodes=4096, d_over_lambda=None, foundation="bonded",
+               penetration=None, hk=HK):
+    """The spec of a BEM run of the layer section: `bem_spec` with the layer's description
+    (``layer``, read by `comparisons.roads`) and the amplitude ``hk``.  On the half-space
+    (``d_over_lambda`` None) at the report's hk it *is* `bem_spec`, so that the section's
+    half-space runs are the same store entries as the figures' above."""
+    spec = runner.point_spec("bem", float(speed), load=None if load is None else float(load),
+                             penetration=None if penetration is None else float(penetration),
+                             ratio=RATIO, hk=float(hk), nodes=int(nodes))
+    layer = layer_description(d_over_lambda, foundation)
+    if layer is not None:
+        spec["layer"] = layer
+    return spec
+
+
+def full_contact_clears(d_over_lambda, foundation, p_fc, hk=HK):
+    """True when, in full contact at the load ``p_fc`` (= p̃FC), the indenter's crest stays
+    above the foundation of the section's layer: approach·h < d, with the approach (over h) of
+    ``docs/layers.md`` §7, Δ/h + C kd J0 p̃/hk = 1 + C kd p̃FC/hk (J0 = 1/E0 for the standard
+    linear solid; C of §4: (1 − 2ν)/(1 − ν)² bonded, 0 at ν = ½, and 1 frictionless with free
+    ends).  The BEM refuses an answer whose crest reaches the foundation; linear theory has no
+    such limit, the body does."""
+    kd = 2.0 * math.pi * float(d_over_lambda)
+    return hk + uniform_compliance(foundation) * kd * p_fc < kd
+
+
+def uniform_compliance(foundation):
+    """C of the section's layer (``docs/layers.md`` §4, free ends): the uniform compression
+    under a mean pressure p̃ is C d p̃ J0; (1 − 2ν)/(1 − ν)² bonded (0 at ν = ½), 1
+    frictionless.  The BEM reports its own in ``diagnostics["layer"]["uniform_compliance"]``
+    (tests/test_report_layers.py compares them)."""
+    if foundation == "frictionless":
+        return 1.0
+    return (1.0 - 2.0 * LAYER_NU) / (1.0 - LAYER_NU) ** 2
+
+
+def layer_runs(nodes, speeds):
+    """Every BEM run of the layer section: list of (spec, with_fields), no fields.
+
+    μ and 2a/λ at p̃∞ = `LAYER_LOAD` at ``speeds`` on ``nodes`` panels for every layer of
+    `LAYER_THICKNESSES` (the half-space's are the report's own runs when ``speeds`` holds the
+    figures' speeds); the full-contact load (Δ/h = 1) at `LAYER_FC_HK` on every marker layer
+    and speed, and at the report's hk where the layer has no uniform compression (C = 0: the
+    bonded incompressible layer, whose approach is Δ/h = 1 exactly) and clears it (d > h,
+    `full_contact_clears`; with C > 0 whether it clears depends on p̃FC, an output).
+    """
+    out = []
+    for foundation, ds in LAYER_THICKNESSES.items():
+        for d in ds:
+            out += [(layer_spec(LAYER_LOAD, s, nodes, d, foundation), False) for s in speeds]
+    for foundation in LAYER_THICKNESSES:
+        for d in LAYER_FC_MARKERS:
+            for s in LAYER_FC_SPEEDS:
+                out.append((layer_spec(None, s, nodes, d, foundation, penetration=1.0,
+                                       hk=LAYER_FC_HK), False))
+                if uniform_compliance(foundation) == 0.0 and full_contact_clears(d, foundation,
+                                                                                   0.0):
+                    out.append((layer_spec(None, s, nodes, d, foundation, penetration=1.0),
+                                False))
+    return out
+
+
+def layer_of(rec):
+    """The layer a BEM record describes (thickness, foundation, ν, uniform compliance, mean
+    displacement, approach): the record's ``layer``, or where older records kept it,
+    ``diagnostics["layer"]``; None on the half-space."""
+    return rec.get("layer") or (rec.get("diagnostics") or {}).get("layer")
+
+
+def _peak(speeds, values):
+    """(speed, value) of the largest of positive sampled values: the vertex of the parabola in
+    (log V, log value) through the largest sample and its two neighbours (the sample itself at
+    an end).  On figure 12's μ at p̃∞ = 0.3, 8 speeds per decade, it is off the semi-analytic
+    peak by 7e-5 in μ and 1.4e-3 in V/V0 (relative); 4 per decade, 4.5e-3 and 2.5e-3."""
+    v = np.log(np.asarray(values, float))
+    x = np.log10(np.asarray(speeds, float))
+    i = int(np.nanargmax(v))
+    if i == 0 or i == v.size - 1 or not np.all(np.isfinite(v[i - 1:i + 2])):
+        return float(speeds[i]), float(np.exp(v[i]))
+    a, b, c = np.polyfit(x[i - 1:i + 2], v[i - 1:i + 2], 2)
+    return float(10.0 ** (-b / (2.0 * a))), float(np.exp(c - b * b / (4.0 * a)))
+
+
+def layer_sweeps(store, cfg):
+    """The friction and contact figures of the layer section: μ and 2a/λ against V/V0 at
+    p̃∞ = `LAYER_LOAD` for every layer of `LAYER_THICKNESSES`.
+
+    Returns
+    -------
+    dict
+        ``load``, ``nu``, ``nodes``; ``curves``: per foundation, one dict per thickness
+        (``d_over_lambda``, None for the half-space; ``speed``, ``mu``, ``contact_fraction``
+        and their ``mu_error`` (relative) and ``contact_fraction_error`` (absolute), the BEM's
+        own estimates, None where it gives none; ``peak`` (V/V0, μ) by `_peak`; ``failed``,
+        the speeds whose run failed); ``analytic``: the semi-analytic half-space (``speed``,
+        ``mu``, ``contact_fraction`` = ka/π, ``peak`` its friction peak) and ``half_space_mu``,
+        the largest relative difference of the BEM's half-space μ from it.
+    """
+    from .peers import tamaas as peer  # the semi-analytic road's friction peak
+    curves = {}
+    for foundation, ds in LAYER_THICKNESSES.items():
+        curves[foundation] = []
+        for d in ds:
+            c = {"d_over_lambda": d, "speed": [], "mu": [], "contact_fraction": [],
+                 "mu_error": [], "contact_fraction_error": [], "failed": []}
+            for s in cfg.layer_speeds:
+                doc = stored(store, layer_spec(LAYER_LOAD, s, cfg.nodes, d, foundation))
+                if doc is None:
+                    c["failed"].append(float(s))
+                    continue
+                rec = doc["record"]
+                est = rec.get("error_estimate") or {}
+                c["speed"].append(float(s))
+                c["mu"].append(rec["mu"])
+                c["contact_fraction"].append(rec["contact_fraction"])
+                c["mu_error"].append(est.get("mu"))
+                c["contact_fraction_error"].append(est.get("contact_fraction"))
+            c["peak"] = _peak(c["speed"], c["mu"]) if c["mu"] else (None, None)
+            curves[foundation].append(c)
+    sols = [semi_analytic(LAYER_LOAD, s) for s in SPEED_CURVE]
+    half = next(c for c in curves["bonded"] if c["d_over_lambda"] is None)
+    diff = [abs(m / semi_analytic(LAYER_LOAD, s).mu - 1.0)
+            for s, m in zip(half["speed"], half["mu"])]
+    return {"load": LAYER_LOAD, "nu": LAYER_NU, "nodes": cfg.nodes, "curves": curves,
+            "analytic": {"speed": SPEED_CURVE, "mu": [q.mu for q in sols],
+                         "contact_fraction": [q.ka / math.pi for q in sols],
+                         "peak": peer.friction_peak(load=LAYER_LOAD, ratio=RATIO, hk=HK)},
+            "half_space_mu": max(diff) if diff else None}
+
+
+def layer_full_contact(store, cfg):
+    """The full-contact figure of the layer section: p̃FC against d/λ at `LAYER_FC_SPEEDS`.
+
+    Returns
+    -------
+    dict
+        ``d_over_lambda`` (the curves' abscissae); ``curves``: per foundation, one dict per
+        speed: ``speed``, ``load`` (the closed form, `comparisons.roads.full_contact_load`),
+        ``clears`` (`full_contact_clears` at the report's hk, per abscissa), ``half_space``
+        (p̃FC of the half-space, `comparisons.roads.transition_load`), ``markers``: one dict
+        per marker thickness with ``d_over_lambda``, ``closed_form``, ``bem`` (the BEM's load at
+        Δ/h = 1 and hk = `LAYER_FC_HK`, times HK/hk; None when the run failed), ``bem_error``
+        (its estimate, relative, scaled alike; None without one), ``bem_hk1`` (at the report's
+        hk, None where not run or failed), ``approach`` (the BEM's at hk = `LAYER_FC_HK`).
+    """
+    curves = {}
+    scale = HK / LAYER_FC_HK
+    for foundation in LAYER_THICKNESSES:
+        curves[foundation] = []
+        for s in LAYER_FC_SPEEDS:
+            load = [roads.full_contact_load(s, RATIO, HK, layer_description(d, foundation))
+                    for d in LAYER_FC_CURVE]
+            markers = []
+            for d in LAYER_FC_MARKERS:
+                doc = stored(store, layer_spec(None, s, cfg.nodes, d, foundation,
+                                               penetration=1.0, hk=LAYER_FC_HK))
+                rec = doc["record"] if doc else None
+                est = ((rec or {}).get("error_estimate") or {}).get("load")
+                hk1 = None
+                if uniform_compliance(foundation) == 0.0 and full_contact_clears(d, foundation,
+                                                                                   0.0):
+                    doc1 = stored(store, layer_spec(None, s, cfg.nodes, d, foundation,
+                                                    penetration=1.0))
+                    hk1 = doc1["record"]["load"] if doc1 else None
+                markers.append({
+                    "d_over_lambda": d,
+                    "closed_form": roads.full_contact_load(s, RATIO, HK,
+                                                           layer_description(d, foundation)),
+                    "bem": None if rec is None else rec["load"] * scale,
+                    "bem_error": est, "bem_hk1": hk1,
+                    "approach": None if rec is None else layer_of(rec)["approach"]})
+            curves[foundation].append({
+                "speed": s, "load": load,
+                "clears": [full_contact_clears(d, foundation, p) for d, p in
+                           zip(LAYER_FC_CURVE, load)],
+                "half_space": roads.transition_load(s, RATIO, HK), "markers": markers})
+    return {"d_over_lambda": LAYER_FC_CURVE, "curves": curves}
+
+
+def layer_findings(sweeps, fc):
+    """What the layer section's figures show, as numbers (from `layer_sweeps` and
+    `layer_full_contact`).
+
+    Returns
+    -------
+    dict
+        ``thinnest``: per foundation, the thinnest layer's ``d_over_lambda``, its friction
+        ``peak`` and the half-space's (V/V0, μ), ``crossing`` (the V/V0 where its μ meets the
+        half-space's, interpolated in log V: below it the layer's μ is the larger; None when the
+        curves do not cross), ``mu_ratio_low`` and ``mu_ratio_high`` (its μ over the
+        half-space's at the lowest and highest speed) and ``contact_ratio`` (its 2a/λ over the
+        half-space's, smallest and largest over the speeds); ``exponent``: per foundation, the
+        slope −d log p̃FC/d log d between the two thinnest markers at V/V0 = 1 (3 for a squeezed
+        incompressible film, 1 for a thin frictionless layer); ``speed_spread``: per foundation,
+        the largest relative spread over the speeds of the BEM's p̃FC on a layer over the
+        half-space's closed-form p̃FC, at one thickness (0 up to the BEM's error when the layer
+        only rescales p̃FC(V), mode 1 alone carrying full contact: it is 1/S(kd)).
+    """
+    thinnest, exponent, spread = {}, {}, {}
+    for f, cs in sweeps["curves"].items():
+        half = next(c for c in cs if c["d_over_lambda"] is None)
+        thin = min((c for c in cs if c["d_over_lambda"] is not None),
+                   key=lambda c: c["d_over_lambda"])
+        hmu = dict(zip(half["speed"], half["mu"]))
+        hcf = dict(zip(half["speed"], half["contact_fraction"]))
+        sp = [s for s in thin["speed"] if s in hmu]
+        r = [m / hmu[s] for s, m in zip(thin["speed"], thin["mu"]) if s in hmu]
+        crossing = None
+        for i in range(len(r) - 1):
+            if (r[i] - 1.0) * (r[i + 1] - 1.0) < 0.0:
+                x0, x1 = math.log10(sp[i]), math.log10(sp[i + 1])
+                crossing = 10.0 ** (x0 + (1.0 - r[i]) * (x1 - x0) / (r[i + 1] - r[i]))
+                break
+        cr = [c / hcf[s] for s, c in zip(thin["speed"], thin["contact_fraction"]) if s in hcf]
+        thinnest[f] = {"d_over_lambda": thin["d_over_lambda"], "peak": thin["peak"],
+                       "half_space_peak": half["peak"], "crossing": crossing,
+                       "mu_ratio_low": r[0] if r else None, "mu_ratio_high": r[-1] if r else None,
+                       "contact_ratio": (min(cr), max(cr)) if cr else (None, None)}
+    for f, cs in fc["curves"].items():
+        one = next(c for c in cs if c["speed"] == 1.0)
+        (d1, p1), (d2, p2) = [(q["d_over_lambda"], q["closed_form"]) for q in one["markers"][:2]]
+        exponent[f] = math.log(p1 / p2) / math.log(d2 / d1)
+        ratios = np.array([[np.nan if q["bem"] is None else q["bem"] / c["half_space"]
+                            for q in c["markers"]] for c in cs])
+        spread[f] = float(np.nanmax(np.ptp(ratios, axis=0) / np.min(ratios, axis=0)))
+    return {"thinnest": thinnest, "exponent": exponent, "speed_spread": spread}

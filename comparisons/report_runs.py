@@ -66,6 +66,12 @@ def _progress(i, n, t0, spec, out):
         solver = f"tamaas N={spec['nodes']} dt={spec['cells_per_step']}·T/N"
     else:
         solver = f"bem N={spec['nodes']}"
+        layer = spec.get("layer")
+        if layer:
+            solver += (f" layer d/λ={layer['thickness_over_wavelength']:g} "
+                       f"{layer['foundation']}")
+        if spec["hk"] != 1.0:
+            solver += f" hk={spec['hk']:g}"
     status = "ok" if out["ok"] else "FAILED"
     print(f"report: [{i}/{n}] {solver} {what} V/V0={spec['speed']:.4g} "
           f"{status} {out['seconds']:.2f} s ({time.monotonic() - t0:.0f} s)", file=sys.stderr)

@@ -28,15 +28,18 @@ def test_quick_report_writes_every_part(quick_report):
     assert "report: [" in proc.stderr  # progress on standard error
     md = (out / "report.md").read_text()
     figures = (["material", "fig03a", "fig03b"] + [f"fig{n:02d}" for n in range(4, 13)]
-               + ["fields", "convergence"] + (["tamaas_dt"] if report.tamaas_installed() else []))
+               + ["fields", "convergence", "layers_mu", "layers_contact", "layers_full_contact"]
+               + (["tamaas_dt"] if report.tamaas_installed() else []))
     for fig in figures:
         assert (out / f"{fig}.png").stat().st_size > 10_000
         assert f"({fig}.png)" in md
     for section in ["The material", "Fields: σ(x) and v(x)", "Scalars from both roads",
                     "Agreement of the two roads", "Convergence of the BEM",
-                    "A third code: Tamaas", "Provenance"]:
+                    "A layer of finite thickness", "A third code: Tamaas", "Provenance"]:
         assert f"## {section}" in md
     assert "numba" in md and "date (UTC)" in md
+    assert re.search(r"^\| time: layer section: runs \(sum over processes\) \| [\d.]+ s \|$",
+                     md, re.M)
     contents = next(ln for ln in md.splitlines() if ln.startswith("Contents: "))
     assert ("not in this report" in contents) != report.tamaas_installed()
     assert re.search(r"^\| runs done on \| (this process|\d+ local processes) \|$", md, re.M)

@@ -2,7 +2,8 @@
 with bash, in a temporary folder; the figures it promises appear.
 
 Every BEM call of the tutorial pins its mesh (``nodes=2048`` / ``--nodes 2048``), so this test
-takes seconds and does not depend on the BEM's default mesh.
+takes seconds and does not depend on the BEM's default mesh (the layer's section, under a
+second).
 """
 import contextlib
 import io
@@ -67,8 +68,10 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
     text = TUTORIAL.read_text(encoding="utf-8")
     promised = re.findall(r"^It prints `([^`]+)`", text, re.M)
     promised += [ln.strip() for ln in text.splitlines() if ln.startswith("    V/V0 = ")]
+    promised += [ln[4:] for ln in text.splitlines()  # the layer's two tables (10 and 9 lines)
+                 if ln.startswith(("    bonded ", "    frictionless ", "    half-space "))]
     out = printed.getvalue().splitlines()
-    assert len(promised) == 7 and all(p in out for p in promised), (promised, out)
+    assert len(promised) == 26 and all(p in out for p in promised), (promised, out)
     sls = [json.loads(ln) for ln in (tmp_path / "sls.jsonl").read_text().splitlines()]
     assert f'"mu": {sls[0]["mu"]!r}' in text and sls[0]["speed"] == 0.01
     # what the text says: the BEM's circles sit on the semi-analytic curve
@@ -80,3 +83,17 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
     humps = [float(namespace["prony_speeds"][i]) for i in range(1, len(mu) - 1)
              if mu[i - 1] < mu[i] > mu[i + 1]]
     assert len(humps) == 3 and all(0.3 < h / c < 3.0 for h, c in zip(humps, (0.01, 1.0, 100.0)))
+    # the layer: what the text says changes.  The contact shrinks as either layer thins (a
+    # stiffer body under the same load) and the frictionless layer is the softer of the two at
+    # one thickness; the thin frictionless layer is refused (the crest reaches the foundation)
+    res = namespace["layer_results"]
+    for foundation, ds in (("bonded", (0.05, 0.1, 0.2, 0.5, None)),
+                           ("frictionless", (0.1, 0.2, 0.5, None))):
+        width = [res[foundation, d].contact_fraction for d in ds]
+        assert all(res[foundation, d].success for d in ds)
+        assert all(a < b for a, b in zip(width, width[1:])), (foundation, width)
+    assert all(res["bonded", d].contact_fraction < res["frictionless", d].contact_fraction
+               for d in (0.1, 0.2, 0.5))
+    refused = res["frictionless", 0.05]
+    assert not refused.success
+    assert refused.diagnostics["layer"]["approach"] >= refused.diagnostics["layer"]["thickness"]
