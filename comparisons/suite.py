@@ -18,6 +18,14 @@ certified values), the profile and material files it names and one fields file p
 creep series, a relaxation series or a DMA master curve, read by
 :func:`comparisons._materials.read`, with an optional ``temperature`` and ``wlf`` [C1, C2, T_ref]);
 its profile is the sinusoid (``hk``) or a profile file (``profile``, :func:`bem.read_profile`).
+A case may put a layer of thickness d on a rigid foundation in place of the half-space (``layer``:
+``thickness_over_wavelength`` d/λ, ``foundation`` "bonded" or "frictionless", ``nu``; the plain
+description both roads take through :mod:`comparisons.roads`, ``docs/layers.md``).  On a layer
+the scalars keep their meaning (Δ/h = 1 − s/h, s measured to the mean line of the *deformed*
+surface, as on the half-space) and two are added: ``approach`` (the indenter's crest from the
+undeformed top face over h, Δ/h plus the layer's mean compression) and ``mean_displacement``
+(that compression over h, C (k d) J0 p̃/hk: exact under load control, certified under
+penetration control).
 
 How a value is certified (one rule for every case)
 --------------------------------------------------
@@ -41,8 +49,9 @@ little, and are not converging.
   sub-panel edge estimates make single refinements scatter once they reach ~1e-10).
 - BEM only (Prony series, other profiles): the certified value is q_R and ``e = SAFETY · E``
   (SAFETY = 10).
-- BEM and the Fourier reference (a sinusoid case on a Prony material that declares
-  ``"reference": "fourier"``, opt-in per case): the case is also solved by
+- BEM and the Fourier reference (a sinusoid case on a Prony material, or on the standard linear
+  solid over a layer, that declares ``"reference": "fourier"``, opt-in per case): the case is
+  also solved by
   :func:`analytic.fourier_solve` (dense Fourier collocation sharing no code with the BEM; creep
   series of the case's material, ``require_resolved=False``: its own estimates and refusals
   decide).  The certified value is q_R and ``e = max(SAFETY · E, |q_R − q_F|)``, q_F the Fourier
@@ -50,6 +59,9 @@ little, and are not converging.
   The evidence records q_F and the reference's own error estimate (made absolute).  These
   broad-spectrum cases are where a BEM-only study is least safe (memory layers far below the
   panel width are handled by the edge fits, not resolved): an independent road is the check.
+  On a layer the semi-analytic road does not apply (its closed forms are the half-space's), and
+  the reference takes the same layer (mode n of its operator times S(|n| k d, ν)): the layer
+  cases, the standard linear solid's included, are certified this way.
 
 A failed BEM solve on any of the finest meshes, or a failed reference, certifies nothing (0
 digits, case status "incomplete", the solver's message in the notes); ``--check`` then says when
@@ -61,7 +73,8 @@ In every case the number of certified significant digits is the largest d with
 round-off of the BEM's sums differs between machines, and a certified digit must survive
 recomputation anywhere).
 A quantity that is exact by construction (ka = π in full contact, the input of a
-penetration-controlled case, …) is listed as exact.
+penetration-controlled case, the mean compression of a layer under load control, …) is listed as
+exact.
 
 Fields (σ, v, gap on the grid x_j = j/M − ½, M = FIELD_POINTS, a subset of the BEM's panel
 centres) carry an absolute error per point: two roads, the semi-analytic value with the largest
@@ -137,9 +150,10 @@ RULE = (
     "the finest value q_L when the study is in the round-off regime or its differences scatter "
     f"with an observed order below {MIN_ORDER}). BEM only (Prony "
     f"series, other profiles): the certified value is q_R with e = {SAFETY:g} E. BEM and the "
-    "Fourier reference (sinusoid on a Prony material, cases that declare it): the point is also "
-    "solved by the independent Fourier collocation of analytic.fourier_solve (the creep series of "
-    "the case's material), and the certified value is q_R with "
+    "Fourier reference (sinusoid on a Prony material, or on the standard linear solid over a "
+    "layer, where the semi-analytic road does not apply; cases that declare it): the point is "
+    "also solved by the independent Fourier collocation of analytic.fourier_solve (the creep "
+    "series of the case's material, the case's layer), and the certified value is q_R with "
     f"e = max({SAFETY:g} E, |q_R - q_F|), q_F the Fourier value: the digits on which both roads "
     "agree, never more than the BEM's own study supports; a failed reference certifies nothing. "
     "The certified "
@@ -155,7 +169,9 @@ RULE = (
 
 FIELD_COLUMNS = ("pressure", "displacement", "gap")
 TOP_KEYS = ("mu", "tau_f", "penetration", "separation", "load", "contact_fraction", "ka", "ke",
-            "ke_hat")
+            "ke_hat", "approach", "mean_displacement")
+#: the scalars of a layer only (`_scalar_keys`): read from the BEM's ``diagnostics["layer"]``
+LAYER_KEYS = ("approach", "mean_displacement")
 
 
 # --------------------------------------------------------------------------- the suite file
@@ -193,8 +209,10 @@ def get_case(name, suite=None) -> dict:
 
 
 def two_roads(point) -> bool:
-    """True when the semi-analytic road applies (sinusoid on the standard linear solid)."""
-    return not point.get("profile") and not point.get("prony") and not point.get("material")
+    """True when the semi-analytic road applies (sinusoid on the standard linear solid, on the
+    half-space: the road has no layer)."""
+    return (not point.get("profile") and not point.get("prony") and not point.get("material")
+            and not point.get("layer"))
 
 
 #: the independent references a case may declare (``"reference"``), beyond the two roads
@@ -212,11 +230,12 @@ def reference_of(case):
                          f"one of {', '.join(REFERENCES)} or none")
     p = case["point"]
     if p.get("profile") or two_roads(p):
-        # the Fourier collocation solves the sinusoid only, and the standard linear solid has
-        # the semi-analytic road already
+        # the Fourier collocation solves the sinusoid only, and the standard linear solid on the
+        # half-space has the semi-analytic road already (on a layer it has not: allowed)
         raise SuiteError(f"case {case['name']}: reference {ref!r} is not allowed here: a "
-                         "sinusoid on a Prony material (prony or material), not "
-                         + ("a profile file" if p.get("profile") else "the standard linear solid"))
+                         "sinusoid on a Prony material (prony or material) or over a layer, not "
+                         + ("a profile file" if p.get("profile")
+                            else "the standard linear solid on the half-space"))
     return ref
 
 
@@ -278,16 +297,28 @@ def _scalar_keys(point, full_contact, n_patches):
             keys += ["ka", "ke"]
     if full_contact or n_patches == 1:
         keys += ["ke_hat"]
+    if point.get("layer"):
+        # the approach is Δ/h (1 in full contact) plus the mean compression, which under load
+        # control is exact (`_exact`): in full contact under load control both are exact
+        if point.get("load") is None:
+            keys += ["approach", "mean_displacement"]
+        elif not full_contact:
+            keys += ["approach"]
     return keys
 
 
 def _value(obj, key):
+    """Scalar ``key`` of a BEM or Fourier result as a float (NaN when it has none); a layer's
+    ``approach`` and ``mean_displacement`` are in the BEM's ``diagnostics["layer"]``."""
     v = getattr(obj, key, None)
+    if v is None and key in LAYER_KEYS and obj is not None:
+        v = (getattr(obj, "diagnostics", None) or {}).get("layer", {}).get(key)
     return float("nan") if v is None else float(v)
 
 
 #: the Fourier reference's estimates are relative for these (absolute for ka, ke, ke_hat)
-_FOURIER_RELATIVE = ("load", "penetration", "tau_f", "mu", "contact_fraction")
+_FOURIER_RELATIVE = ("load", "penetration", "tau_f", "mu", "contact_fraction", "approach",
+                     "mean_displacement")
 
 
 def _fourier_evidence(ref, key):
@@ -392,7 +423,7 @@ def compute(case, base=DATA, progress=None):
                             four if four_ok else None)
     method = "two roads" if roads else FOURIER_METHOD if four is not None else "bem convergence"
     certified = {"method": method, "status": status,
-                 "notes": notes, "scalars": scalars, "exact": _exact(point, full),
+                 "notes": notes, "scalars": scalars, "exact": _exact(point, full, problem),
                  "patches": patch_out, "fields": field_summary}
     if four is not None:
         certified["reference"] = _reference_record(four, four_ok)
@@ -510,15 +541,32 @@ def _certified_patches(meshes, full, npatch):
     return patch_out
 
 
-def _exact(point, full):
+def _exact(point, full, problem=None):
     """The quantities exact by construction: full contact or not, an imposed Δ/h, and in full
-    contact ka = π, 2a/λ = 1, Δ/h = 1, s/h = 0 and no ke."""
+    contact ka = π, 2a/λ = 1, Δ/h = 1, s/h = 0 and no ke; on a layer under load control the
+    mean compression (`layer_compression`) and, in full contact, the approach 1 + it."""
     exact = {"full_contact": full}
     if point.get("penetration") is not None:
         exact["penetration"] = float(point["penetration"])
     if full:
         exact.update(ka=math.pi, contact_fraction=1.0, penetration=1.0, separation=0.0, ke=None)
+    if point.get("layer") and point.get("load") is not None:
+        mean = layer_compression(point, problem or _problem(point))
+        exact["mean_displacement"] = mean
+        if full:
+            exact["approach"] = 1.0 + mean
     return exact
+
+
+def layer_compression(point, problem):
+    """v̄₀/h, the mean compression of a load-controlled point's layer over h: the uniform mode
+    under the mean pressure p̃ (static in the frame of the indenter: the relaxed compliance J0),
+    ``C (k d) J0 p̃ / hk`` with C the layer's uniform compliance (``docs/layers.md`` §4, §7; 0
+    for a bonded incompressible layer), in the order of operations of the BEM's own."""
+    lay = _roads.layer(point["layer"])
+    profile, material = problem
+    return lay.uniform * lay.thickness * float(material.J0) * float(point["load"]) \
+        / float(profile.amplitude)
 
 
 def _status(failures, runs, full, four):
@@ -537,12 +585,17 @@ def _status(failures, runs, full, four):
 
 def _reference_record(four, four_ok):
     """What the Fourier reference was and what it said (its caveats included), not its timing:
-    the record must not change when nothing certified does."""
-    return {"solver": "analytic.fourier_solve", "success": four_ok,
-            "message": four.message.splitlines()[0][:300],
-            "warnings": [w[:300] for w in four.warnings],
-            "nodes": [int(n) for n in four.nodes],
-            "shifts": int(four.shifts), "require_resolved": False}
+    the record must not change when nothing certified does.  On a layer, the layer it solved
+    (k d, foundation, ν and its uniform compliance, as the reference describes it)."""
+    rec = {"solver": "analytic.fourier_solve", "success": four_ok,
+           "message": four.message.splitlines()[0][:300],
+           "warnings": [w[:300] for w in four.warnings],
+           "nodes": [int(n) for n in four.nodes],
+           "shifts": int(four.shifts), "require_resolved": False}
+    if getattr(four, "layer", None) is not None:
+        rec["layer"] = {k: (_num(v) if isinstance(v, (int, float)) and not isinstance(v, bool)
+                            else v) for k, v in dict(four.layer).items()}
+    return rec
 
 
 def _certified_fields(point, nodes, grid_fields, ref, M, roads):
@@ -593,6 +646,13 @@ def write_fields(path, case, fields):
     buf.write(f"# grid: {case['certified']['fields']['grid']}\n")
     buf.write("# units: pressure = sigma (1 - nu^2)/E0, displacement = v/h (into the body, "
               "from the mean line of the deformed surface), gap = gap/h\n")
+    lay = case["point"].get("layer")
+    if lay:
+        dl = float(lay["thickness_over_wavelength"])
+        buf.write(f"# on a layer: d/lambda = {dl!r} (k d = {2.0 * math.pi * dl!r}), "
+                  f"{lay['foundation']} foundation, nu = {float(lay['nu'])!r}; the displacement "
+                  "is from the mean line of the deformed surface as on the half-space (the "
+                  "layer's mean compression, mean_displacement, is not in it)\n")
     buf.write("# <column>_err: certified absolute error of the value on the same row\n")
     buf.write(f"# {case['certified']['fields']['source']}\n")
     w = csv.writer(buf, lineterminator="\n")
@@ -676,10 +736,13 @@ def compare(old, new, old_fields=None, new_fields=None):
 
 # --------------------------------------------------------------------------- check
 def _case_key(case) -> str:
-    """Hash of what determines a case's recomputation: its definition, its input files, the
-    version and the source of both roads."""
+    """Hash of what determines a case's recomputation: its definition (the point with its
+    ``layer``: thickness, foundation, ν), its input files, the version and the source of both
+    roads."""
     import viscosine
     h = hashlib.sha256()
+    # the whole point, its layer included: a case whose layer changed is never taken for the
+    # one recomputed before (a half-space point has no "layer" key: its key is as it was)
     h.update(json.dumps({k: case[k] for k in ("name", "point", "nodes")}, sort_keys=True).encode())
     h.update(str(case.get("field_points", FIELD_POINTS)).encode())
     if case.get("reference"):  # only when declared: the keys of the other cases stay as they were
@@ -699,12 +762,14 @@ def _case_key(case) -> str:
     return h.hexdigest()[:20]
 
 
-def _recompute(name):
-    """Worker entry: recompute one case by name (plain data in, plain data out)."""
-    case = get_case(name)
+def _recompute(case):
+    """Worker entry: recompute one case, given by name (the shipped definition) or as the
+    case's definition being checked (plain data in, plain data out): the key saved is that of
+    what was solved, its layer included."""
+    case = get_case(case) if isinstance(case, str) else case
     t0 = time.perf_counter()
     cert, fields = compute(case)
-    return {"name": name, "key": _case_key(case), "certified": cert,
+    return {"name": case["name"], "key": _case_key(case), "certified": cert,
             "fields": {k: np.asarray(v).tolist() for k, v in fields.items()},
             "seconds": time.perf_counter() - t0}
 
@@ -723,7 +788,9 @@ def _recomputed(cases, out, resume, workers, scheduler, log):
                 log(f"suite: {case['name']}: reused from {path}")
                 yield doc
                 continue
-        todo.append(case["name"])
+        # the definition checked (not the shipped one by name): a suite whose point or layer
+        # differs is recomputed as it is, under its own key
+        todo.append({k: case[k] for k in case if k != "certified"})
 
     def save(doc):
         if out:
@@ -740,7 +807,7 @@ def _recomputed(cases, out, resume, workers, scheduler, log):
     with _cluster.executor(local, scheduler) as ex:
         for i, value in ex.imap(_recompute, todo, ordered=False):
             if isinstance(value, _cluster.Failure):
-                yield {"name": todo[i], "failed": value.error, "seconds": 0.0}
+                yield {"name": todo[i]["name"], "failed": value.error, "seconds": 0.0}
             else:
                 yield save(value)
 
@@ -763,7 +830,8 @@ def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None,
     log : callable, optional
         Progress lines (default: standard error).
     suite : dict, optional
-        The suite to check against (default: the shipped one).
+        The suite to check against (default: the shipped one): its cases' definitions (point,
+        layer, meshes) are what is recomputed, its certification what they are compared with.
 
     Returns
     -------

@@ -120,16 +120,72 @@ def _inputs(case, suite) -> dict:
                          "file": "prony.txt"}
     if not p.get("material"):
         units += " (E_ref = E0, tau_ref = tau: the creep time)"
+    if p.get("layer"):
+        units += ("; on a layer, approach and mean_displacement over h, the layer's thickness "
+                  "as d/lambda and k d (k = 2 pi/lambda)")
     d["units"] = units
+    if p.get("layer"):
+        d["layer"] = layer_inputs(case)
     if two_roads(p):
         d["reference_road"] = "semi-analytic (two roads agree)"
     elif reference_of(case) == "fourier":
         d["reference_road"] = ("BEM (convergence study), checked against the independent "
                                "Fourier-collocation reference analytic.fourier_solve (the digits "
-                               "both agree on)")
+                               "both agree on)" + (", solved on the same layer"
+                                                   if p.get("layer") else ""))
     else:
         d["reference_road"] = "BEM (convergence study)"
     return d
+
+
+#: what a case's layer is, its surface compliance and the approach (inputs.json, README.md)
+LAYER_DEFINITION = (
+    "a layer of thickness d in place of the half-plane, its top face under the indenter (the "
+    "contact pressure, no shear) and its lower face on a rigid foundation: bonded "
+    "(u_x = u_z = 0 there) or frictionless (u_z = 0 and no shear there); plane strain, Poisson "
+    "ratio nu constant in time (only E depends on the frequency). Mode n of the surface "
+    "compliance is the half-space's times the layer factor S(|n| k d, nu): with q = exp(-2t), "
+    "kappa = 3 - 4 nu, bonded S = [kappa (1 - q^2) - 4 t q] / [kappa (1 + q^2) + "
+    "(1 + kappa^2 + 4 t^2) q], frictionless S = (1 - q)^2 / [(1 - q^2) + 4 t q] (docs/layers.md "
+    "of viscosine)")
+APPROACH_DEFINITION = (
+    "Delta is measured from the mean line of the deformed surface, as on the half-space "
+    "(penetration = Delta/h = 1 - s/h, s the mean gap). The layer also compresses as a whole "
+    "under the mean pressure: its mean line sinks by v0/h = C (k d) J0 p/hk (mean_displacement; "
+    "J0 the relaxed compliance J(t -> inf) in 1/E_ref, the mean pressure being static in the "
+    "frame of the indenter; C = (1 - 2 nu)/(1 - nu)^2 bonded, C = 1 frictionless with the "
+    "layer's ends free). approach = Delta/h + v0/h is the indenter crest's depth below the "
+    "undeformed top face, over h; it stays below d/h = k d/hk (the cases are well clear of it)")
+
+
+def layer_inputs(case) -> dict:
+    """The layer block of a case's ``inputs.json``: d/λ and k d (and over h), the foundation,
+    ν, the uniform compliance C, the layer factor of mode 1, the definitions a third code needs
+    (`LAYER_DEFINITION`, `APPROACH_DEFINITION`) and, under load control, the exact mean
+    compression (as ``scalars.json`` lists it)."""
+    p = case["point"]
+    lay = _roads.layer(p["layer"])
+    out = {"thickness_over_wavelength": float(lay.thickness_over_wavelength),
+           "thickness_kd": float(lay.thickness),
+           "foundation": lay.foundation, "nu": float(lay.nu),
+           "uniform_compliance_C": float(lay.uniform),
+           "layer_factor_mode_1": float(lay.factor([1.0])[0]),
+           "definition": LAYER_DEFINITION, "approach": APPROACH_DEFINITION}
+    if not p.get("profile"):
+        out["thickness_over_h"] = float(lay.thickness) / float(p.get("hk", 1.0))
+    mean = case["certified"]["exact"].get("mean_displacement")
+    if mean is not None:
+        out["mean_displacement"] = mean
+    return out
+
+
+def layer_text(point) -> str:
+    """A case's layer in a few words (``--list``, README.md): ``half-plane`` without one."""
+    if not point.get("layer"):
+        return "half-plane"
+    lay = _roads.layer(point["layer"])
+    return (f"layer d/λ = {lay.thickness_over_wavelength:g} (kd = {lay.thickness:.4g}), "
+            f"{lay.foundation}, ν = {lay.nu:g}")
 
 
 def _scalar_rows(cert):
@@ -209,11 +265,13 @@ def _material_png(path, case):
 def summary_table(cases) -> str:
     """The Markdown table of `summary_rows` (`suite --list`, the exported README)."""
     from ._html import table
-    return table(["case", "title", "μ digits", "Δ/h digits", "certified by"], summary_rows(cases))
+    return table(["case", "title", "body", "μ digits", "Δ/h digits", "certified by"],
+                 summary_rows(cases))
 
 
 def summary_rows(cases):
-    """(case, title, μ digits, Δ/h or load digits, how) for each case."""
+    """(case, title, body: the half-plane or the layer, μ digits, Δ/h or load digits, how) for
+    each case."""
     rows = []
     for c in cases:
         cert = c["certified"]
@@ -224,7 +282,8 @@ def summary_rows(cases):
             second = f"input ({sc['load']['digits']} in the load)"
         else:
             second = "exact (full contact)"
-        rows.append([c["name"], c["title"], str(sc["mu"]["digits"]), second,
+        rows.append([c["name"], c["title"], layer_text(c["point"]), str(sc["mu"]["digits"]),
+                     second,
                      cert["method"] + ("" if cert["status"] == "complete"
                                        else f" — {cert['status']}")])
     return rows
@@ -235,7 +294,9 @@ def _index_readme(suite, cases) -> str:
            suite["description"], "",
            "Each folder is one case:", "",
            "- `inputs.json`: the operating point (load or penetration control, speed) and what "
-           "the indenter and the material are, in the units stated there;",
+           "the indenter and the material are, in the units stated there (and, for a case on a "
+           "layer, `layer`: its thickness as d/λ and k d, its foundation, ν and the definitions "
+           "below);",
            "- `profile.csv`: the indenter, k·y at x/λ = j/M − 1/2 (columns `x_over_lambda,ky`; "
            "the profile is the trigonometric interpolant of the samples);",
            "- `prony.txt`: the creep function, a line `J0 value` then one line `J_i tau_i` per "
@@ -256,13 +317,17 @@ def _index_readme(suite, cases) -> str:
            "certified under penetration control), `contact_fraction` (2a/λ), `ka`, `ke`, "
            "`ke_hat` (one patch or full contact); with several patches, per patch: `summit` "
            "(x/λ of the highest profile point in the patch), `trailing_edge`, `leading_edge` "
-           "(x/λ), `load` (its share of p̃∞), `ka`, `ke`, `ke_hat`. `exact` lists what holds by "
-           "construction (full contact: ka = π, Δ/h = 1, s = 0; the input Δ/h).", "",
+           "(x/λ), `load` (its share of p̃∞), `ka`, `ke`, `ke_hat`; on a layer also `approach` "
+           "and, under penetration control, `mean_displacement` (below). `exact` lists what "
+           "holds by construction (full contact: ka = π, Δ/h = 1, s = 0; the input Δ/h; on a "
+           "layer under load control its `mean_displacement`, and in full contact the "
+           "`approach`).", "",
            "Units and signs: pressure σ(1 − ν²)/E0 (positive in compression), displacement v/h "
            "(positive into the body, from the mean line of the deformed surface), gap/h; "
            "x/λ with the crest at 0 and the indenter sliding toward +x; μ = τf/p∞ with τf "
            "positive when it resists; ka, ke, kê in radians (per patch measured from the "
            "patch's summit).", "",
+           *_layers_section(cases),
            "## How the digits are certified", "", suite["rule"], "",
            "## Cases", "",
            summary_table(cases),
@@ -270,6 +335,26 @@ def _index_readme(suite, cases) -> str:
            "Cite: Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the "
            "problem and the semi-analytic method).", ""]
     return "\n".join(out)
+
+
+def _layers_section(cases):
+    """README lines on the layer cases (none without one): what a layer is, how Δ/h and the
+    approach are measured, and each case's layer."""
+    layered = [c for c in cases if c["point"].get("layer")]
+    if not layered:
+        return []
+    out = ["## Layers", "",
+           "A case with `layer` in its `inputs.json` solves " + LAYER_DEFINITION + ".", "",
+           "The scalars keep their meaning on a layer: " + APPROACH_DEFINITION + ".", ""]
+    for c in layered:
+        lay = layer_inputs(c)
+        mean = lay.get("mean_displacement")
+        out.append(f"- {c['name']}: d/λ = {lay['thickness_over_wavelength']:g}, "
+                   f"k d = {lay['thickness_kd']!r}, {lay['foundation']}, "
+                   f"ν = {lay['nu']:g}, C = {lay['uniform_compliance_C']:.6g}, "
+                   f"S(k d) = {lay['layer_factor_mode_1']:.6g}"
+                   + ("" if mean is None else f", mean_displacement = {mean!r} (exact)"))
+    return out + [""]
 
 
 def _materials_list(cases):

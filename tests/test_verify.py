@@ -487,6 +487,54 @@ def test_bem_reference_for_a_profile_case(tmp_path, capsys):
     assert "edges" in {q["key"] for q in doc["quantities"]}
 
 
+LAYER_CASE = "sls-layer-frictionless-d0.1"
+
+
+def test_a_layer_case_gives_the_callable_its_layer(tmp_path, capsys):
+    """On a layer case the callable's point carries the case's ``layer`` (d/λ, foundation, ν):
+    viscosine's BEM given it passes against the certified values; the same BEM on the
+    half-plane (the layer dropped) fails, naming μ (35 % off)."""
+    layer = suite.get_case(LAYER_CASE)["point"]["layer"]
+    (tmp_path / "solvers.py").write_text(
+        "import json\n"
+        "from comparisons import verify\n"
+        "def with_layer(point, nodes):\n"
+        f"    open({str(tmp_path / 'seen.json')!r}, 'w').write(json.dumps(point))\n"
+        "    return verify.viscosine_bem(point, nodes)\n"
+        "def half_plane(point, nodes):\n"
+        "    point = {k: v for k, v in point.items() if k != 'layer'}\n"
+        "    return verify.viscosine_bem(point, nodes)\n", encoding="utf-8")
+    rc, out, err = _run(capsys, "--case", LAYER_CASE, "--callable",
+                        f"{tmp_path}/solvers.py:with_layer", "--nodes", "1024", "--out",
+                        str(tmp_path / "rep"), "--no-figures")
+    assert rc == 0, out + err
+    seen = json.loads((tmp_path / "seen.json").read_text(encoding="utf-8"))
+    assert seen["layer"] == layer
+    doc = _verdict(tmp_path / "rep")
+    assert doc["reference"]["road"] == "BEM" and doc["point"]["layer"] == layer
+    assert f"certified values of the suite case {LAYER_CASE}" in doc["reference"]["description"]
+    rc, out, err = _run(capsys, "--case", LAYER_CASE, "--callable",
+                        f"{tmp_path}/solvers.py:half_plane", "--nodes", "1024", "--out",
+                        str(tmp_path / "rep2"), "--no-figures")
+    assert rc == 1 and "FAIL mu" in out
+    mu = next(q for q in _verdict(tmp_path / "rep2")["quantities"] if q["key"] == "mu")
+    assert mu["difference"] > 0.3
+
+
+def test_a_layer_case_is_refused_to_the_peer_and_a_bad_layer_to_the_api(tmp_path, capsys):
+    rc, _, err = _run(capsys, "--case", LAYER_CASE, "--peer", "tamaas", "--out",
+                      str(tmp_path), "--no-figures")
+    assert rc == 2 and len(err.strip().splitlines()) == 1
+    assert err.startswith("python -m comparisons verify: --peer tamaas: with a case on a layer "
+                          f"({LAYER_CASE})")
+    from comparisons._errors import BadInput
+    with pytest.raises(BadInput, match=r"^layer .*nu"):
+        verify.assert_agrees({"mu": 0.15}, {"load": 0.1, "speed": 1.0, "layer": {
+            "thickness_over_wavelength": 0.1, "foundation": "bonded", "nu": 0.7}})
+    with pytest.raises(BadInput, match=r"^layer .*not a layer description"):
+        verify.assert_agrees({"mu": 0.15}, {"load": 0.1, "speed": 1.0, "layer": 0.1})
+
+
 def test_scalars_jsonl_with_a_convergence_study(tmp_path, capsys):
     ref = suite.get_case(CASE)["certified"]["scalars"]
     lines = [{"nodes": n, "mu": ref["mu"]["value"] * (1 + 2.0 / n ** 2),

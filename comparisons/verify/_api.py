@@ -20,7 +20,8 @@ def assert_agrees(fields_or_scalars, case, rtol=None, tol=None):
         optionally ``displacement``, ``gap``), or a dict of scalars keyed like the conventions.
     case : str or dict
         A suite case name, or an operating point (``load`` or ``penetration``, ``speed``, and
-        ``ratio``/``hk`` or ``prony``/``profile`` file paths).
+        ``ratio``/``hk`` or ``prony``/``profile`` file paths, and optionally ``layer``: the plain
+        layer description of `comparisons.roads.layer`, checked).
     rtol : float, optional
         A flat tolerance of every scalar and of the contact edges (relative or absolute as in
         `comparisons.verify._quantities`).  By default max(1e-4, 3 e_N) on the fields' grid of

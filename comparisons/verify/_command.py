@@ -203,6 +203,9 @@ def _solver_under_test(args, point, nodes, cells, inputs):
         fn = load_callable(args.callable)
         inputs["--callable"] = args.callable
         return (lambda n: fn(dict(point), n)), args.label or args.callable, "--callable"
+    if point.get("layer"):
+        raise bad_input("--peer", "tamaas", f"with a case on a layer ({args.case})",
+                        "the sinusoid on the standard linear solid half-plane")
     if not _suite.two_roads(point):
         raise bad_input("--peer", "tamaas", "with --profile/--prony",
                         "the sinusoid on the standard linear solid")

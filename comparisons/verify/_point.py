@@ -58,6 +58,8 @@ def check_point(point, option_prefix="--"):
                             "one of --hk and --profile")
     else:
         num("hk", lambda v: v > 0.0, "hk > 0")
+    if point.get("layer") is not None:
+        check_layer(point["layer"], option_prefix + "layer")
     for k, reader in (("profile", roads.read_profile), ("prony", roads.read_prony)):
         if point.get(k):
             path = point[k]
@@ -68,6 +70,24 @@ def check_point(point, option_prefix="--"):
                 raise bad_input("--" + k, path, str(exc).split(": ", 1)[-1],
                                 f"the format of bem.read_{k}") from None
     return point
+
+
+#: what a point's ``layer`` may be (the plain description of `comparisons.roads.layer`)
+LAYER_ALLOWED = ("a dict with thickness_over_wavelength (d/λ) or thickness (k d), foundation "
+                 "('bonded' or 'frictionless') and nu in (-1, 0.5]")
+
+
+def check_layer(layer, option="layer"):
+    """BadInput unless ``layer`` is a plain layer description the BEM takes (the layer's own
+    refusal, naming its parameter, in one line)."""
+    keys = {"thickness", "thickness_over_wavelength", "foundation", "nu"}
+    if not isinstance(layer, dict) or not set(layer) <= keys:
+        raise bad_input(option, layer, "not a layer description", LAYER_ALLOWED)
+    try:
+        roads.layer(layer)
+    except (TypeError, ValueError) as exc:
+        raise bad_input(option, layer, str(exc).splitlines()[0], LAYER_ALLOWED) from None
+    return layer
 
 
 def complete(point):

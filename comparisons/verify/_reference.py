@@ -1,5 +1,6 @@
 """The reference of a verification: the semi-analytic road where it applies (sinusoid on the
-standard linear solid), else the BEM (the suite's certified values for ``--case``, else a
+standard linear solid half-plane), else the BEM, a layer included (the suite's certified values
+for ``--case``, on a layer checked against the Fourier reference there, else a
 convergence study as the suite's; its fields on the user's grid at N = M·2^k ≥ 2^16); the report
 says which, and the reference's own uncertainty.
 """

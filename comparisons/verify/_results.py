@@ -6,10 +6,15 @@
   ``load`` or ``penetration``, ``speed``, and ``ratio``/``hk`` or absolute ``prony``/``profile``
   file paths, or for a suite case that names a material file of any form an absolute
   ``material`` path with its ``temperature`` and ``wlf`` when given, as
-  :func:`comparisons._materials.read` takes them); it returns a :class:`viscosine.Fields` (its
+  :func:`comparisons._materials.read` takes them; for a case on a layer, ``layer``: a dict
+  ``{"thickness_over_wavelength": d/λ, "foundation": "bonded" | "frictionless", "nu": ν}``, the
+  layer of thickness d on a rigid foundation that replaces the half-plane, which the callable
+  must solve: the half-plane's answer fails); it returns a :class:`viscosine.Fields` (its
   cells too, on a non-uniform grid), a dict of arrays keyed like the CSV columns, or an object
-  with ``.fields`` (and optionally ``.scalars``, a dict).
-  :func:`viscosine_bem` is such a callable (viscosine's own BEM).
+  with ``.fields`` (and optionally ``.scalars``, a dict).  Δ/h and the displacement are measured
+  from the mean line of the deformed surface on a layer too (the layer's mean compression is
+  not in them).
+  :func:`viscosine_bem` is such a callable (viscosine's own BEM, the layer included).
 - ``--peer tamaas``: :mod:`comparisons.peers.tamaas` (imported only when asked for): at each
   ``--nodes`` (default 256 512 1024) a dt study with dt = C·T/N for each ``--dt-cells`` C
   (default 4 2 1), extrapolated to dt → 0 by the peer's Richardson step (``extrapolate``, the
@@ -102,7 +107,8 @@ def to_conventions(fields, E0, nu, amplitude):
 def viscosine_bem(point, nodes):
     """viscosine's own BEM as a ``--callable``: ``comparisons.verify:viscosine_bem``.
 
-    Returns the BEM's fields at its panel centres (x/λ = j/N − ½) as a dict of arrays.
+    Returns the BEM's fields at its panel centres (x/λ = j/N − ½) as a dict of arrays.  A
+    point's ``layer`` goes to ``bem.solve`` (through `comparisons.roads.bem_solution`).
     """
     res = _suite.bem_solution(point, int(nodes), base="/")
     if not res.success:
