@@ -97,7 +97,7 @@ from scipy.special import dawsn
 
 from viscosine.checks import bad, integer, is_integer, real, series
 
-from ._layer import check_layer, describe, layer_factor
+from ._layer import check_layer, describe, layer_factor, uniform_compliance
 
 _TWO_PI = 2.0 * math.pi
 
@@ -412,9 +412,9 @@ def _relaxed_compliance(mat):
 
 
 def _mean_displacement(lay, mat, p, hk):
-    """v̄_0/h: k v̄_0 = C (k d) J0 p̃ over hk (C of `describe`, relaxed J0)."""
-    return describe(lay)["uniform_compliance"] * lay["thickness"] * _relaxed_compliance(mat) \
-        * p / hk
+    """v̄_0/h: k v̄_0 = C (k d) J0 p̃ over hk (C of `uniform_compliance`, relaxed J0)."""
+    return uniform_compliance(lay["nu"], lay["foundation"]) * lay["thickness"] \
+        * _relaxed_compliance(mat) * p / hk
 
 
 # --------------------------------------------------------------------------------------------

@@ -599,8 +599,9 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     -------
     BemResult
         ``success`` only when the solver converged and the answer is physically valid: every
-        scalar finite, 0 < Δ/h ≤ 1, 0 < ka ≤ π, τf, μ ≥ 0, σ ≥ 0, gap ≥ 0 (to round-off) and
-        mean σ = load (relative 1e-8); otherwise ``status`` 4 and a message naming what failed.
+        scalar finite, 0 < Δ/h ≤ 1, 0 < ka ≤ π, τf, μ ≥ 0, σ ≥ 0, gap ≥ 0 (to round-off),
+        mean σ = load (relative 1e-8) and, on a layer, an approach short of the foundation
+        (approach hk < k d); otherwise ``status`` 4 and a message naming what failed.
     """
     sigma = res["sigma"]
     n = grid.nodes

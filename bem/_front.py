@@ -105,7 +105,7 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
     Menga, Putignano, Carbone & Demelio (2014): eq. (2.3) (the solid and its creep time),
     eqs (2.7)–(2.8) (the modulus at the sliding frequency), eq. (B6) (full contact).
     """
-    if "layer" in bem_options:
+    if bem_options.get("layer") is not None:
         raise ValueError(f"layer={bem_options['layer']!r} is not allowed: solve_si takes the "
                          "layer in SI (thickness= [m] and foundation=; nu= is its ratio)")
     for name in ("profile", "ratio", "hk", "load"):

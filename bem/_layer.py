@@ -292,6 +292,11 @@ class Layer:
         """C of `uniform_compliance` (``lateral="free"``: the limit of the modes)."""
         return uniform_compliance(self.nu, self.foundation)
 
+    @property
+    def finest_nodes(self) -> int:
+        """The most panels per period a solve on this layer may use (`finest_nodes`)."""
+        return finest_nodes(self)
+
     def factor(self, modes) -> np.ndarray:
         """S(|n| k d) of the modes n (an array; 1 exactly from |n| k d = 25 on)."""
         return layer_factor(np.abs(np.asarray(modes, dtype=float)) * self.thickness, self.nu,

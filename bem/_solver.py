@@ -118,7 +118,9 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         k d, the foundation, the Poisson ratio); default None, the half-space.  Mode n of the
         operator is the half-space's times the layer factor S(|n| k d, nu) (``docs/layers.md``);
         the scalars keep their meaning (Δ/h from the mean line of the deformed surface) and
-        ``diagnostics["layer"]`` adds the indenter's absolute approach.  No contact window with
+        ``diagnostics["layer"]`` adds the indenter's absolute approach; a penetration with
+        (Δ/h) hk ≥ k d is refused (ValueError) and an answer whose approach reaches the
+        foundation (approach hk ≥ k d) is not a success (status 4).  No contact window with
         a layer (the periodic grids answer); the estimate is trusted once d spans
         ``bem._layer.MIN_LAYER_PANELS`` panels of N/4.
 

@@ -274,3 +274,22 @@ def test_the_record_carries_the_layer():
                                                      + rec["layer"]["mean_displacement"])
     assert "layer" not in rec["diagnostics"]
     assert "layer" not in bem.solve(load=0.2, speed=1.0, nodes=1024).as_dict()
+
+
+def test_friction_at_the_full_contact_threshold_does_not_see_the_layer():
+    """At Δ/h = 1 (the threshold of full contact) τf and p̃FC both carry 1/S(kd) of mode 1, so
+    μ = (hk/2) sin δ(kV), δ the loss angle, on every layer and the half-space alike, to the
+    panel sampling error, ~(π/N)²/6 ≈ 2.4e-8 at N = 4096 for all; the aliases of mode 1 add
+    ~1/(S(kd) N³) on a layer (6e-10 measured between them at d/λ = 0.05, S = 0.012)."""
+    e1 = 1.0 / complex(SLS3.jstar([1.0], 1.0)[0])
+    hk = 0.01
+    universal = -(hk / 2.0) * e1.imag / abs(e1)
+    layers = (None, bem.Layer(thickness_over_wavelength=0.05, foundation="bonded", nu=0.5),
+              bem.Layer(thickness_over_wavelength=0.2, foundation="frictionless", nu=0.3))
+    mus = []
+    for layer in layers:
+        r = bem.solve(penetration=1.0, speed=1.0, hk=hk, nodes=4096, layer=layer)
+        assert r.success and r.full_contact
+        mus.append(r.mu)
+        assert r.mu == pytest.approx(universal, rel=1e-7)
+    assert max(mus) - min(mus) <= 2e-9 * universal

@@ -112,7 +112,7 @@ ODD = [
      "--thickness given twice"),
     # too thin for any grid, and too thin for the fixed mesh asked
     (["--thickness", "0.001", "--foundation", "bonded", "--nu", "0.5"],
-     "--thickness is not allowed: at most"),
+     "--thickness (d/λ) 0.001 is not allowed: at most"),
     (["--thickness", "0.01", "--foundation", "bonded", "--nu", "0.5", "--nodes", "1048576"],
      "--nodes 1048576 is not allowed: at most"),
 ]
@@ -132,6 +132,14 @@ def test_odd_layer_input_is_refused_up_front(extra, fragment, capsys):
 @pytest.mark.parametrize("argv, fragment", [
     (["point", "--solver", "analytic", "--load", "0.2", "--speed", "1"] + LAYER,
      "--thickness is not allowed here: a BEM option"),
+    (["point", "--solver", "analytic", "--load", "0.2", "--speed", "1"] + LAYER[:4],
+     "--thickness is not allowed here: a BEM option"),  # before asking for --nu
+    (["point", "--solver", "analytic", "--load", "0.2", "--speed", "1", "--foundation",
+      "bonded"], "--foundation is not allowed here: a BEM option"),
+    (["point", "--solver", "bem", "--penetration", "9e-5", "--speed", "1e-3", "--units", "SI",
+      "--nu", "0.5", "--wavelength", "0.01", "--amplitude", "1e-4", "--E0", "1e6", "--Einf",
+      "3e6", "--tau-creep", "0.1", "--thickness", "5e-5", "--foundation", "bonded"],
+     "is not allowed: a penetration the layer can take: Δ < d = 5e-05 [m]"),
     (["point", "--solver", "bem", "--penetration", "0.7", "--speed", "1"] + LAYER,
      "--penetration 0.7 is not allowed: a penetration the layer can take: Δ/h < k d/hk = "
      "0.628319"),
@@ -158,3 +166,20 @@ def test_a_load_through_the_layer_is_not_an_answer(capsys):
                                  "frictionless", "--nu", "0.3"])
     assert rc == 1 and out == ""
     assert "reaches the foundation" in err
+
+
+def test_verify_refuses_a_layer_its_reference_cannot_solve():
+    """verify's reference is a convergence study up to 2^18 panels: a layer whose lowest mode
+    allows fewer is refused up front, as is a penetration through the layer (one line each,
+    naming the layer); a layer it can solve passes."""
+    from comparisons._errors import BadInput
+    from comparisons.verify._point import check_point
+    base = {"load": 0.3, "speed": 1.0, "ratio": 3.0, "hk": 1.0}
+    thin = {"thickness_over_wavelength": 0.01, "foundation": "bonded", "nu": 0.5}
+    with pytest.raises(BadInput, match="too thin for the reference's convergence study"):
+        check_point({**base, "layer": thin})
+    ok = {"thickness_over_wavelength": 0.1, "foundation": "bonded", "nu": 0.5}
+    assert check_point({**base, "layer": ok})["layer"] == ok
+    deep = {"penetration": 0.7, "speed": 1.0, "ratio": 3.0, "hk": 1.0, "layer": ok}
+    with pytest.raises(BadInput, match="would reach the foundation"):
+        check_point(deep)

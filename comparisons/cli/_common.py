@@ -258,6 +258,11 @@ def layer_options(args, si):
     """``{"thickness_over_wavelength", "foundation", "nu"}`` of --thickness, --foundation and
     --nu (None without --thickness); with --units SI the thickness [m] over the wavelength.
     The values as given: `runner.resolve` and the BEM's Layer check them."""
+    if args.solver == "analytic" and (args.thickness is not None or
+                                      args.foundation is not None):
+        raise BadInput(f"--{'thickness' if args.thickness is not None else 'foundation'} is not "
+                       "allowed here: a BEM option (the semi-analytic road solves the "
+                       "half-space; use --solver bem)")
     if args.thickness is None:
         if args.foundation is not None:
             raise BadInput(f"--foundation {args.foundation} is not allowed without --thickness: "
@@ -275,6 +280,12 @@ def layer_options(args, si):
         if not (math.isfinite(d) and d > 0.0):
             raise BadInput(f"--thickness {d!r} is not allowed: a finite layer thickness d > 0 "
                            "[m] (--units SI)")
+        deep = [v for v in (args.penetration if isinstance(args.penetration, list)
+                             else [args.penetration]) if v is not None]
+        if deep and max(deep) * si["amplitude"] >= d:
+            raise BadInput(f"--penetration {max(deep) * si['amplitude']!r} is not allowed: a "
+                           f"penetration the layer can take: Δ < d = {d!r} [m]; deeper, the "
+                           "indenter would reach the foundation")
         d = d / si["wavelength"]
     return {"thickness_over_wavelength": d, "foundation": args.foundation, "nu": args.nu}
 
@@ -327,7 +338,11 @@ def validate(spec):
     try:
         runner.validate(spec)
     except BadInput as exc:
-        raise BadInput(_option_names(str(exc))) from None
+        text = _option_names(str(exc))
+        if text.startswith("--thickness is not allowed") and spec.get("layer"):
+            d = spec["layer"]["thickness_over_wavelength"]
+            text = f"--thickness (d/λ) {d!r} is not allowed" + text[len("--thickness is not allowed"):]
+        raise BadInput(text) from None
 
 
 def _option_names(text):

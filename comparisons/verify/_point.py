@@ -59,7 +59,7 @@ def check_point(point, option_prefix="--"):
     else:
         num("hk", lambda v: v > 0.0, "hk > 0")
     if point.get("layer") is not None:
-        check_layer(point["layer"], option_prefix + "layer")
+        check_layer(point["layer"], option_prefix + "layer", point)
     for k, reader in (("profile", roads.read_profile), ("prony", roads.read_prony)):
         if point.get(k):
             path = point[k]
@@ -77,16 +77,31 @@ LAYER_ALLOWED = ("a dict with thickness_over_wavelength (d/λ) or thickness (k d
                  "('bonded' or 'frictionless') and nu in (-1, 0.5]")
 
 
-def check_layer(layer, option="layer"):
+#: the finest mesh of the reference's convergence study (`_reference`: N = 2^10 … 2^18)
+STUDY_FINEST = 2 ** 18
+
+
+def check_layer(layer, option="layer", point=None):
     """BadInput unless ``layer`` is a plain layer description the BEM takes (the layer's own
-    refusal, naming its parameter, in one line)."""
+    refusal, naming its parameter, in one line), thick enough for the reference's study
+    (`STUDY_FINEST` panels: a thinner layer caps the mesh, `bem.Layer.finest_nodes`) and, under
+    penetration control on the sinusoid of ``point``, one the penetration does not cross."""
     keys = {"thickness", "thickness_over_wavelength", "foundation", "nu"}
     if not isinstance(layer, dict) or not set(layer) <= keys:
         raise bad_input(option, layer, "not a layer description", LAYER_ALLOWED)
     try:
-        roads.layer(layer)
+        lay = roads.layer(layer)
     except (TypeError, ValueError) as exc:
         raise bad_input(option, layer, str(exc).splitlines()[0], LAYER_ALLOWED) from None
+    if lay.finest_nodes < STUDY_FINEST:
+        raise bad_input(option, layer, f"too thin for the reference's convergence study (its "
+                        f"lowest mode allows at most {lay.finest_nodes} panels)",
+                        f"a layer that allows {STUDY_FINEST} panels (thicker)")
+    pen, hk = (point or {}).get("penetration"), (point or {}).get("hk")
+    if pen is not None and hk is not None and float(pen) * float(hk) >= lay.thickness:
+        raise bad_input(option, layer, f"the penetration Δ/h = {pen!r} would reach the "
+                        f"foundation (k d/hk = {lay.thickness / float(hk):.6g})",
+                        "Δ/h < k d/hk")
     return layer
 
 
