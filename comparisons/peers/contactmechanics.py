@@ -129,13 +129,16 @@ def validate(*, load=None, hk=None, thickness=None, nu=None, nodes=None, toleran
 def _import_contactmechanics():
     """(PeriodicFFTElasticHalfSpace, make_system, Topography, version), or MissingPackage."""
     try:
-        import ContactMechanics
         from ContactMechanics import PeriodicFFTElasticHalfSpace, make_system
         from SurfaceTopography import Topography
     except ImportError as exc:
         raise MissingPackage(f"the ContactMechanics peer needs {CONTACTMECHANICS_REQUIREMENT}; "
                              f"install it with: {_INSTALL}") from exc
-    return PeriodicFFTElasticHalfSpace, make_system, Topography, str(ContactMechanics.__version__)
+    # the installed distribution's version: ContactMechanics.__version__ is discovered from git
+    # and, installed in a virtual environment inside another git checkout (as the README's
+    # commands do), is that checkout's commit
+    from importlib.metadata import version
+    return PeriodicFFTElasticHalfSpace, make_system, Topography, version("ContactMechanics")
 
 
 def _substrate(cls, nodes, thickness, nu):
