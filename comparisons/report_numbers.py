@@ -427,6 +427,8 @@ def layer_runs(nodes, speeds):
     out = []
     for foundation, ds in LAYER_THICKNESSES.items():
         for d in ds:
+            if d is None and foundation != next(iter(LAYER_THICKNESSES)):
+                continue  # the half-space is in every panel: its runs once
             out += [(layer_spec(LAYER_LOAD, s, nodes, d, foundation), False) for s in speeds]
     for foundation in LAYER_THICKNESSES:
         for d in LAYER_FC_MARKERS:
