@@ -171,6 +171,18 @@ def panel_values(x: np.ndarray, nodes: int, out: np.ndarray) -> None:
 
 
 @njit(cache=True)
+def stencil_sum(values: np.ndarray, first: int, weights: np.ndarray, out: np.ndarray) -> None:
+    """out[j] = sum_k weights[k] values[first + j + k] for j < out.size: a short stencil run
+    along `values` in one pass (the far memory sources from the elastic column)."""
+    m = weights.shape[0]
+    for j in range(out.shape[0]):
+        acc = 0.0
+        for k in range(m):
+            acc += weights[k] * values[first + j + k]
+        out[j] = acc
+
+
+@njit(cache=True)
 def exponential_recursion(source: np.ndarray, a: float, out: np.ndarray) -> None:
     """Periodic solution of E_m = S_m + exp(-a) E_(m+1), E_(m+N) = E_m.
 

@@ -9,7 +9,7 @@ from scipy import integrate, special
 
 from bem import _kernels
 from bem._influence import (MemorySources, _legendre01, _product_weights, _signed_offsets,
-                            memory_coefficients)
+                            elastic_coefficients, memory_coefficients)
 
 # Tolerances (what each one measures):
 #: absolute error of Cl2 (|Cl2| <= 1.015): a few ulp of the series plus the quad twin
@@ -128,6 +128,44 @@ def test_memory_sources_against_numpy_twin(length):
         full = np.empty_like(tt)
         _kernels.panel_values((mm + tt) / nodes, nodes, full)  # checked against quad above
         assert abs(got[i] - np.dot(ww, full)) < TOL_LOOP * abs(full).max() * np.sum(ww) * 10
+
+
+def test_stencil_sum_against_numpy_twin():
+    rng = np.random.default_rng(3)
+    values, weights = rng.standard_normal(50), rng.standard_normal(6)
+    for first, count in ((0, 45), (3, 20), (44, 1)):
+        got = np.empty(count)
+        _kernels.stencil_sum(values, first, weights, got)
+        ref = np.array([np.dot(weights, values[first + j:first + j + 6]) for j in range(count)])
+        assert np.max(np.abs(got - ref)) < TOL_LOOP * np.abs(values).max()
+
+
+@pytest.mark.parametrize("length", [1e-9, 0.002, 50.0])
+def test_far_memory_sources_from_the_elastic_column(length):
+    """Given the grid's elastic column, the band farther than 8192 panels from the kinks is
+    integrated from c at the panel centres (a 6-point stencil): against the dense twin there,
+    and equal to the Legendre-point sources everywhere to rounding."""
+    nodes = 20000
+    a = (1.0 / nodes) / length
+    offsets = _signed_offsets(nodes)
+    elastic = elastic_coefficients(nodes)
+    shared = MemorySources(nodes, offsets, elastic)
+    assert any(vals is None for _, _, vals in shared.bands)  # the stencil band is there
+    got, plain = shared(a), MemorySources(nodes, offsets)(a)
+    assert np.max(np.abs(got - plain)) <= 1e-15 * np.abs(plain).max()
+    g, gw = np.polynomial.legendre.leggauss(30)
+    tt = 0.5 * (g + 1.0)
+    ww = 0.5 * gw * np.exp(-a * tt) if a < 80 else None
+    for mm in (8193, 9000, 10000, -9001, -8194):
+        i = mm % nodes
+        if ww is None:  # a far below a panel: only its first 60/a matters (Laguerre's regime)
+            s, sw = np.polynomial.laguerre.laggauss(30)
+            pts, wts = s / a, sw / a
+        else:
+            pts, wts = tt, ww
+        full = np.empty_like(pts)
+        _kernels.panel_values((mm + pts) / nodes, nodes, full)
+        assert abs(got[i] - np.dot(wts, full)) < TOL_LOOP * abs(full).max() * np.sum(wts) * 10
 
 
 def test_memory_sources_of_a_window_are_the_grid_ones():
