@@ -65,6 +65,9 @@ DUAL_MAX_STEPS = 3
 KRYLOV_RETRY_RESTART = 40
 #: memory bound of that second try's Krylov basis (40 vectors of 2^21 panels)
 KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
+#: the Krylov solves keep their preconditioned vectors (one transform pair fewer per cycle)
+#: while these take at most this memory: restart 8 on a set of up to 2^21 panels
+KRYLOV_KEEP_BYTES = 8 * 8 * 2 ** 21
 #: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
 ACTIVE_SET_ROUNDOFF = 2e-13
 #: ... and once the sets have cycled: just inside the validity gate's 1e-12
@@ -150,7 +153,8 @@ def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
         precond = pinv
         b = grid.y[idx] - sep
     # tol bounds every entry of the residual: gaps (k v) on A and the load equation
-    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.scale, restart, max_inner)
+    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.scale, restart, max_inner,
+                               keep=_keeps(restart, b.size))
     sigma = np.zeros(n)
     sigma[idx] = z[:na]
     s = z[na] if load is not None else sep
@@ -186,7 +190,8 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     # C^+ amplifies the rounding of u by up to max|1/symbol|: below that the residual cannot go
     floor = _dual_floor(grid)
     atol = max(tol * load, floor) * math.sqrt(m)
-    z, its, res, ok = gmres(matvec, precond, b, x0, atol, restart, max_inner)
+    z, its, res, ok = gmres(matvec, precond, b, x0, atol, restart, max_inner,
+                            keep=_keeps(restart, m))
     u = grid.y.copy()
     u[free] = z
     del z
@@ -195,6 +200,11 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     sigma[free] = 0.0
     s = float(u.mean())
     return sigma, s, its, res / load * grid.amp, ok, None
+
+
+def _keeps(restart, size) -> bool:
+    """Whether a Krylov solve keeps its preconditioned vectors (`gmres`'s ``keep``)."""
+    return 8 * restart * size <= KRYLOV_KEEP_BYTES
 
 
 def _dual_floor(grid: _Grid):

@@ -131,13 +131,15 @@ class WindowOperator:
         return self._through(values, idx, inverse, whole)
 
 
-def gmres(matvec, precond, b, x0, atol, restart, maxiter):
+def gmres(matvec, precond, b, x0, atol, restart, maxiter, keep=False):
     """Restarted GMRES with right preconditioning (true residuals are monitored).
 
     Solves ``A x = b`` as ``A M u = b``, ``x = M u``, until ``||b - A x||_2 <= atol``
     (an absolute bound: it bounds every entry of the residual).  Classical Gram-Schmidt with
     one reorthogonalisation; Givens rotations; at each restart the true residual
-    ``b - A x`` is recomputed.
+    ``b - A x`` is recomputed.  ``keep``: the preconditioned vectors ``M v_j`` are kept
+    (``restart`` more vectors of b's size) and x is updated from them, one application of M
+    fewer per cycle (M is linear: the same x to rounding).
 
     ``x0`` (the start) is updated in place when it is a float array.
 
@@ -156,6 +158,7 @@ def gmres(matvec, precond, b, x0, atol, restart, maxiter):
     n = b.size
     m = max(1, min(restart, n))
     basis = np.empty((m + 1, n))
+    kept = np.empty((m, n)) if keep else None
     while True:
         beta = float(np.linalg.norm(r))
         if beta <= atol:
@@ -170,7 +173,11 @@ def gmres(matvec, precond, b, x0, atol, restart, maxiter):
         basis[0] = r / beta
         k = 0
         for j in range(m):
-            w = matvec(precond(basis[j]))
+            if keep:
+                kept[j] = precond(basis[j])
+                w = matvec(kept[j])
+            else:
+                w = matvec(precond(basis[j]))
             total += 1
             h = basis[: j + 1] @ w
             w -= basis[: j + 1].T @ h
@@ -196,5 +203,5 @@ def gmres(matvec, precond, b, x0, atol, restart, maxiter):
                 break
             basis[j + 1] = w / hn
         y = np.linalg.solve(np.triu(hess[:k, :k]), g[:k])
-        x += precond(basis[:k].T @ y)
+        x += kept[:k].T @ y if keep else precond(basis[:k].T @ y)
         r = b - matvec(x)

@@ -279,6 +279,33 @@ def test_krylov_solve_keeps_its_last_product_for_the_gaps():
         assert np.array_equal(product, grid.op.apply(sigma))
 
 
+def test_gmres_keeping_its_preconditioned_vectors_saves_one_application_per_cycle():
+    """keep=True updates x from the kept M v_j instead of applying M to their combination: the
+    same x to rounding, M applied once fewer per restart cycle."""
+    from bem._operator import gmres
+    rng = np.random.default_rng(11)
+    n = 60
+    a = np.eye(n) * 4.0 + rng.standard_normal((n, n)) / np.sqrt(n)  # not symmetric
+    m = np.diag(1.0 / np.diag(a) * (1.0 + 0.1 * rng.random(n)))
+    b = rng.standard_normal(n)
+    out = {}
+    for keep in (False, True):
+        calls = [0]
+
+        def precond(v):
+            calls[0] += 1
+            return m @ v
+
+        x, its, res, ok = gmres(lambda v: a @ v, precond, b, np.zeros(n), 1e-12, 5, 200,
+                                keep=keep)
+        assert ok and res <= 1e-12
+        out[keep] = (x, its, calls[0])
+    cycles = -(-out[False][1] // 5)  # restarts of 5 products each
+    assert cycles > 1 and out[True][1] == out[False][1]
+    assert out[False][2] - out[True][2] == cycles
+    assert np.max(np.abs(out[True][0] - out[False][0])) < 1e-12 * np.abs(out[False][0]).max()
+
+
 def _retreat_twin(active, new, factor):
     """Plain-Python twin of _speed_up_retreat: walk each cyclic run of `active` panel by panel."""
     n = len(active)
