@@ -14,6 +14,8 @@ from ._layer import MIN_LAYER_PANELS
 
 #: the error estimate is this factor times the first-order bound of the last differences
 ESTIMATE_SAFETY = 1.5
+#: consecutive grids an estimate uses at most: N, N/2, N/4, N/8
+ESTIMATE_GRIDS = 4
 #: a patch narrower than this many panels on the coarsest grid of an estimate is not resolved
 MIN_PATCH_PANELS = 8
 #: a Prony term's memory length w tau_i/(2 pi) (in wavelengths) is resolved from this many panels
@@ -157,7 +159,7 @@ def _estimate(scalars, material, speed, layer=None):
         return None, "fewer than three converged grids", None
     run = [scalars[-1]]
     for n, sc in reversed(scalars[:-1]):
-        if len(run) == 4 or n * 2 != run[-1][0]:
+        if len(run) == ESTIMATE_GRIDS or n * 2 != run[-1][0]:
             break
         run.append((n, sc))
     if len(run) < 3:

@@ -459,7 +459,9 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
         # one (the full-contact threshold, the limit of Delta -> h from below)
         sig = grid.op.pseudo_solve(grid.y)
         full = sig - float(sig.min())
-    elif load is not None:
+    elif load is not None and (best is None or best[0]["active"].all()):
+        # (from a coarser grid in partial contact this test is skipped, a transform pair
+        # saved: should this grid be in full contact, its active-set steps reach it)
         sig = grid.op.pseudo_solve(grid.y) + load
         if sig.min() >= 0.0:  # full contact: no active-set iteration needed
             full = sig

@@ -267,6 +267,18 @@ def test_nested_and_single_grid_agree():
     assert abs(a.ka - b.ka) < TOL_SAME
 
 
+def test_fixed_mesh_solves_the_estimates_grids_and_quarters_below():
+    """nodes=N solves N/8, N/4, N/2, N (the four grids an estimate uses) and below them every
+    fourth grid down to START_NODES/2 (they only give the next grid its start)."""
+    n = 2 ** 14
+    r = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, nodes=n, load=0.3)
+    assert [lv[0] for lv in r.levels] == [256, 512, 2048, 4096, 8192, 16384]
+    assert r.success and r.error_estimate is not None
+    odd = bem.solve(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, nodes=3 * 2 ** 10,
+                    load=0.3)
+    assert [lv[0] for lv in odd.levels] == [384, 768, 1536, 3072]  # halvings while even
+
+
 def test_krylov_solve_keeps_its_last_product_for_the_gaps():
     """The last product GMRES makes is with its answer: kept over every panel it is C sigma,
     the same numbers a separate product gives (the gaps are made from it), under both controls."""
@@ -277,6 +289,24 @@ def test_krylov_solve_keeps_its_last_product_for_the_gaps():
         sigma, _, its, _, ok, product = S._linear_solve(grid, idx, load, sep, x0, 1e-10, 8, 300)
         assert ok and its > 0
         assert np.array_equal(product, grid.op.apply(sigma))
+
+
+def test_full_contact_reached_from_a_partial_coarser_grid():
+    """A grid started from a coarser one in partial contact skips the direct full-contact test
+    (a transform pair): where it is in full contact all the same, its active-set steps reach
+    it, with the pressure C^+ y + load of the direct test."""
+    from bem import _grid as S
+    speed = 1.0
+    p_fc = 1.0 / (2.0 * abs(_jstar1(SLS, speed)))
+    coarse = S._Grid(bem.Sinusoid(1.0), SLS, speed, 512)
+    start = S._solve_one(coarse, 0.9 * p_fc, None, [None], 1e-10, 50, 8, 300)
+    assert start["status"] == S.CONVERGED and not start["active"].all()
+    grid = S._Grid(bem.Sinusoid(1.0), SLS, speed, 1024)
+    res = S._solve_one(grid, 1.01 * p_fc, None, [(start, coarse)], 1e-10, 50, 8, 300)
+    direct = S._solve_one(grid, 1.01 * p_fc, None, [None], 1e-10, 50, 8, 300)
+    assert res["status"] == S.CONVERGED and res["active"].all() and res["nit"] > 1
+    assert direct["nit"] == 1 and np.array_equal(res["sigma"], direct["sigma"])
+    assert np.max(np.abs(res["gap"] - direct["gap"])) <= 1e-15
 
 
 def test_gmres_keeping_its_preconditioned_vectors_saves_one_application_per_cycle():
