@@ -196,8 +196,9 @@ def table_cost(big_exponent, out) -> None:
           f"load {load}, N = {n})", file=out)
     print("FFT pairs: real transforms counted in pair equivalents of N (an rfft and an irfft of "
           "length N make 1; coefficients, Krylov products, gaps, friction and fields "
-          "included); time: best of 3 after a warm-up solve. nested: the halvings below N "
-          "first (the estimate's grids); cold: nested=False, from the full-contact pressure",
+          "included); time: best of 3 after a warm-up solve. nested: the estimate's grids N/8, "
+          "N/4, N/2 and every fourth grid below them first; cold: nested=False, from the "
+          "full-contact pressure",
           file=out)
     print(f"{'start':>7} {'FFT pairs':>10} {'time [s]':>9} {'nit':>4} {'inner (finest)':>40}",
           file=out)
