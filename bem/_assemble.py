@@ -107,6 +107,13 @@ TAIL_FIT_DEGREE = 3
 #: standard linear solid at V/V0 = 0.1, N = 2^14: 3 to 20 passes from a start up to 1 h off);
 #: 40 allow a contraction up to 0.55, and a side that has not settled by then does not count
 TAIL_FIT_PASSES = 40
+#: ... a fixed point still moving after them gives its zero all the same when each of its last
+#: TAIL_FIT_JITTER_PASSES passes moved it by at most TAIL_FIT_JITTER times the fit window's
+#: extent: that is the rounding of the fit's zero, above 1e-10 h on fine grids (measured: a
+#: zero converged to 0.2679535632 h jittering by 0.5-9e-10 h at N = 2^19, a 41-term spectrum;
+#: its side was dropped by chance, and the edge fell back to the plain fit, 0.25 h off)
+TAIL_FIT_JITTER = 1e-10
+TAIL_FIT_JITTER_PASSES = 8
 #: a side's zero may move by this many panels between the fit windows N^(1/2)/16..N^(1/2)/4 and
 #: ..N^(1/2)/2 (where the model holds they agree to ~1e-4 h; where another scale sits in the
 #: window they differ by 1e-2 h or more)
@@ -117,7 +124,8 @@ def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
     """Zero near `start` of the least-squares cubic + b h/|d| through vals[m] at offsets
     sign (m + shift) h, m = m1..m2 (d = offset - zero); None where too few panels are
     there, the zero leaves [-h/2, 3h/2] (the range of the edge offsets) or the fixed point
-    has not settled after TAIL_FIT_PASSES passes.
+    has not settled after TAIL_FIT_PASSES passes (to 1e-10 h, or to the rounding of the fit:
+    TAIL_FIT_JITTER).
 
     Only the tail column changes from pass to pass: the cubic's columns are factored once
     (QR), the tail column is projected off them for b, and the cubic's zero nearest the last
@@ -132,6 +140,7 @@ def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
     y = vals[m]
     qy = q.T @ y
     root = start
+    moves = []
     for _ in range(TAIL_FIT_PASSES):
         prev = root
         # |d| >= h/2 for every panel fitted (m1 >= 1, root in [-h/2, 3h/2])
@@ -148,6 +157,10 @@ def _tail_fit_root(vals, sign, shift, m1, m2, start, h):
             return None
         if abs(root - prev) <= 1e-10 * h:
             return root
+        moves.append(abs(root - prev))
+    recent = moves[-TAIL_FIT_JITTER_PASSES:]
+    if len(recent) == TAIL_FIT_JITTER_PASSES and max(recent) <= TAIL_FIT_JITTER * scale:
+        return root  # settled to the fit's rounding
     return None  # the fixed point did not settle: no zero to trust
 
 

@@ -117,3 +117,28 @@ def test_a_fixed_point_that_has_not_settled_gives_no_zero(monkeypatch):
     assert root is not None and abs(root - 0.3 * h) < TOL_EXACT * h
     monkeypatch.setattr(_assemble, "TAIL_FIT_PASSES", 2)
     assert _assemble._tail_fit_root(inside, -1.0, 0.0, 4, 16, start, h) is None
+
+
+@pytest.mark.parametrize("jitter, counts", [(5e-10, True), (5e-8, False)])
+def test_a_fixed_point_jittering_at_rounding_still_gives_its_zero(monkeypatch, jitter, counts):
+    """On fine grids the fit's zero carries more rounding than 1e-10 h: a fixed point that has
+    converged but still moves by jitter (in h) each pass gives its zero after TAIL_FIT_PASSES
+    when that is at most TAIL_FIT_JITTER times the window's extent (here 16 h: 1.6e-9 h), and
+    none when it moves more."""
+    nodes = 4096
+    inside, _, h = _synthetic(0.3 / nodes, nodes, 0.02, 0.0)
+    scale = 16 * h  # the window's extent, m2 = 16
+    plain = _assemble._cubic_zero_near
+    sign = [1.0]
+
+    def jittering(c, x):
+        z = plain(c, x)
+        sign[0] = -sign[0]
+        return None if z is None else z + sign[0] * jitter * h / scale
+
+    monkeypatch.setattr(_assemble, "_cubic_zero_near", jittering)
+    root = _assemble._tail_fit_root(inside, -1.0, 0.0, 4, 16, 0.3 * h, h)
+    if counts:
+        assert root is not None and abs(root - 0.3 * h) < TOL_EXACT * h
+    else:
+        assert root is None
