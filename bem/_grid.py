@@ -440,6 +440,22 @@ def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
     return active, sigma, prev["s"] + (prev_grid.s_offset - grid.s_offset)
 
 
+def _clip_shift(sig, load):
+    """The shift t >= 0 with mean((sig - t)_+) = load, for sig the full-contact pressure (mean
+    load): clipped at zero it carries more than the load, and its set of positive panels is too
+    wide; lowered by t it carries the load.  Newton's method on the convex, increasing
+    mean((sig - t)_+) from t = 0, which stays on the root's side."""
+    t = 0.0
+    for _ in range(60):
+        pos = sig > t
+        excess = float(np.mean(np.where(pos, sig - t, 0.0))) - load
+        slope = float(np.mean(pos))
+        if excess <= 1e-12 * load or slope == 0.0:
+            break
+        t += excess / slope
+    return t
+
+
 def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None,
                widen=True):
     """Solve one grid, started from the finest coarser grid (``start``: a list holding it or
@@ -447,7 +463,7 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
     elastic Prony)`` on the same grid, or else from scratch."""
     best = start.pop() if start else None
     n = grid.n
-    full = None
+    full = sig = None
     # no coarser grid of the sequence gives the start: the active set has far to go
     cold = best is None and n > START_NODES
     if grid.window:  # started from a coarser grid always
@@ -479,7 +495,10 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
             best = (er, eg)
     if best is None:
         if load is not None:
-            sig = grid.op.pseudo_solve(grid.y) + load
+            if sig is None:
+                sig = grid.op.pseudo_solve(grid.y) + load
+            if cold:
+                sig = sig - _clip_shift(sig, load)
             active = sig > 0.0
             sigma0 = np.where(active, sig, 0.0)
         else:

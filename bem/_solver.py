@@ -49,6 +49,10 @@ MAX_FAILED_FROM_SCRATCH = 5
 #: elastic start
 COLD_DIRECT_STEPS = 20
 COLD_DIRECT_INNER = 40
+#: ... and a Krylov restart of at least this (its first steps' inexact solves, on a set half as
+#: wide again as the contact, need 9-14 iterations; restarted at 8 they took 14 where 9 do:
+#: the paper's point at 2^20, 124.5 -> 113.5 FFT pairs)
+COLD_DIRECT_RESTART = 12
 
 
 def solve(*, load=None, penetration=None, speed, profile=None, material=None, ratio=None,
@@ -109,7 +113,8 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
     nested : bool
         With ``nodes``: solve the coarser grids first (their contact starts the next grid, and
         the last three or four give the error estimate).  False solves ``nodes`` alone, from the
-        full-contact pressure clipped at zero (should that fail, once more from the relaxed
+        full-contact pressure lowered until, clipped at zero, it carries the load (with a
+        Krylov restart of at least 12; should that fail, once more from the relaxed
         elastic contact, then from the elastic contact with the first harmonic's compliance
         |J*|), with no estimate.  The adaptive
         mesh is always nested.
@@ -329,9 +334,9 @@ def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | Non
 
 def _solve_level(p: _Problem, run: _Run, grid, elastic, harmonic) -> dict:
     """One grid of the sequence with its retries: from the coarser grid's contact (nested=False:
-    from the full-contact pressure clipped at zero); should that fail, from the elastic contact
-    ``elastic`` (the first grid: then from ``harmonic``'s, the elastic contact with the first
-    harmonic's |J*|).  Returns `_solve_one`'s state."""
+    from the full-contact pressure, lowered until clipped at zero it carries the load); should
+    that fail, from the elastic contact ``elastic`` (the first grid: then from ``harmonic``'s,
+    the elastic contact with the first harmonic's |J*|).  Returns `_solve_one`'s state."""
     n = grid.n
     steps = p.max_outer if run.good is None else min(p.max_outer, MAX_OUTER_AFTER_CONVERGED)
     # the coarser grid is handed over in a list that _solve_one empties, so that it is
@@ -339,13 +344,15 @@ def _solve_level(p: _Problem, run: _Run, grid, elastic, harmonic) -> dict:
     start, run.best, run.last = [run.best], None, None
     if p.nodes is not None:
         run.good = None  # a fixed mesh answers on its own grid or not at all
-    # nested=False: first from the full-contact pressure clipped at zero, with few Krylov
-    # steps each (where the operator is far from normal, a stiff material at low speed,
-    # they stagnate from there); then, as any grid that fails, from the elastic contact
+    # nested=False: first from the full-contact pressure (lowered until clipped at zero it
+    # carries the load: `_grid._clip_shift`), with few Krylov steps each (where the operator is
+    # far from normal, a stiff material at low speed, they stagnate from there); then, as any
+    # grid that fails, from the elastic contact
     direct = not p.nested and START_NODES < n <= MAX_NODES_RETRY
     if direct:
         res = _solve_one(grid, p.load, p.sep, start, p.tol, min(steps, COLD_DIRECT_STEPS),
-                         p.restart, min(p.max_inner, COLD_DIRECT_INNER), widen=False)
+                         max(p.restart, COLD_DIRECT_RESTART), min(p.max_inner, COLD_DIRECT_INNER),
+                         widen=False)
     else:
         res = _solve_one(grid, p.load, p.sep, start, p.tol, steps, p.restart, p.max_inner,
                          elastic=elastic)

@@ -309,6 +309,24 @@ def test_full_contact_reached_from_a_partial_coarser_grid():
     assert np.max(np.abs(res["gap"] - direct["gap"])) <= 1e-15
 
 
+def test_cold_start_pressure_carries_the_load():
+    """nested=False starts from the full-contact pressure lowered by t until, clipped at zero,
+    it carries the load: against t from the sorted values (the exact piecewise-linear root)."""
+    from bem import _grid as S
+    rng = np.random.default_rng(5)
+    for n, load in ((64, 0.3), (1000, 1e-3), (4096, 2.0)):
+        sig = rng.standard_normal(n)
+        sig += load - sig.mean()  # a full-contact pressure: mean = load, negative somewhere
+        t = S._clip_shift(sig, load)
+        assert t > 0 and abs(np.maximum(sig - t, 0.0).mean() - load) <= 1e-12 * load
+        desc = np.sort(sig)[::-1]
+        k = np.arange(1, n + 1)
+        roots = (np.cumsum(desc) - n * load) / k  # t if exactly the k largest stay positive
+        exact = roots[np.flatnonzero((roots < desc) & (roots >= np.append(desc[1:], -np.inf)))[0]]
+        assert abs(t - exact) <= 1e-12 * np.abs(sig).max()
+    assert S._clip_shift(np.full(8, 0.5), 0.5) == 0.0  # nothing to clip
+
+
 def test_gmres_keeping_its_preconditioned_vectors_saves_one_application_per_cycle():
     """keep=True updates x from the kept M v_j instead of applying M to their combination: the
     same x to rounding, M applied once fewer per restart cycle."""

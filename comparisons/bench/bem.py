@@ -198,7 +198,7 @@ def table_cost(big_exponent, out) -> None:
           "length N make 1; coefficients, Krylov products, gaps, friction and fields "
           "included); time: best of 3 after a warm-up solve. nested: the estimate's grids N/8, "
           "N/4, N/2 and every fourth grid below them first; cold: nested=False, from the "
-          "full-contact pressure",
+          "full-contact pressure lowered to carry the load once clipped",
           file=out)
     print(f"{'start':>7} {'FFT pairs':>10} {'time [s]':>9} {'nit':>4} {'inner (finest)':>40}",
           file=out)
