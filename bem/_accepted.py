@@ -32,8 +32,10 @@ TERM_MIN = 1e-12
 RTOL_MIN, RTOL_MAX = 1e-10, 1e-2
 NODES_MIN = 8
 #: bytes per panel of a solve (operator, its FFTs, the Krylov basis and the fields): the
-#: tracemalloc peak at 2^20 is 81-114 for E_inf/E0 = 3 and 136 for a stiff material mostly in
-#: contact (python -m comparisons bench --bem)
+#: tracemalloc peak at 2^20 is 81-126 for E_inf/E0 = 3 and 159 for a stiff material mostly in
+#: contact (python -m comparisons bench --bem), 134 without the kept preconditioned Krylov
+#: vectors, which grids whose active set exceeds 2^21 panels (restart 8) do not keep: at the
+#: sizes this cap decides (2^22 and up) a solve stays under it
 BYTES_PER_PANEL = 150
 
 

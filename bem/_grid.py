@@ -443,24 +443,31 @@ def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
 def _clip_shift(sig, load):
     """The shift t >= 0 with mean((sig - t)_+) = load, for sig the full-contact pressure (mean
     load): clipped at zero it carries more than the load, and its set of positive panels is too
-    wide; lowered by t it carries the load.  Newton's method on the convex, increasing
-    mean((sig - t)_+) from t = 0, which stays on the root's side."""
+    wide; lowered by t it carries the load.  Newton's method on mean((sig - t)_+), convex and
+    decreasing in t, from t = 0: each step stays short of the root (the tangent lies below),
+    until the excess is round-off or a step no longer moves t."""
     t = 0.0
+    floor = 4.0 * np.finfo(float).eps * float(np.max(np.abs(sig)))
     for _ in range(60):
         pos = sig > t
         excess = float(np.mean(np.where(pos, sig - t, 0.0))) - load
         slope = float(np.mean(pos))
         if excess <= 1e-12 * load or slope == 0.0:
             break
-        t += excess / slope
+        step = excess / slope
+        t += step
+        if step <= floor:
+            break
     return t
 
 
 def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None,
-               widen=True):
+               widen=True, carry=False):
     """Solve one grid, started from the finest coarser grid (``start``: a list holding it or
     None, emptied here), or else from the elastic contact of ``elastic = (profile, an
-    elastic Prony)`` on the same grid, or else from scratch."""
+    elastic Prony)`` on the same grid, or else from scratch: under load control from the
+    full-contact pressure clipped at zero, lowered first (`_clip_shift`) with ``carry`` (the
+    first try of nested=False) so that it carries the load."""
     best = start.pop() if start else None
     n = grid.n
     full = sig = None
@@ -495,9 +502,8 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
             best = (er, eg)
     if best is None:
         if load is not None:
-            if sig is None:
-                sig = grid.op.pseudo_solve(grid.y) + load
-            if cold:
+            # sig: the full-contact test's pressure above (made whenever no coarser grid starts)
+            if carry:
                 sig = sig - _clip_shift(sig, load)
             active = sig > 0.0
             sigma0 = np.where(active, sig, 0.0)

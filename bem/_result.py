@@ -127,7 +127,7 @@ class BemResult:
         Caveats (a patch spanning few panels, an unresolved memory layer).
     error_estimate : mapping or None
         The solver's estimate of the discretisation error of each scalar, from its last three
-        grids N/4, N/2, N (absolute for contact_fraction, ka, ke, kê; relative for penetration,
+        or four grids (N/8,) N/4, N/2, N (absolute for contact_fraction, ka, ke, kê; relative for penetration,
         tau_f, mu; a key is None where its scalar is), None when the grids cannot support one
         (fewer than three converged, a patch under 8 panels, a patch count changing with N).
     rtol : float or None

@@ -44,7 +44,7 @@ MAX_NODES_FULL_RETRY = 2 ** 18
 #: consecutive failed grids, none converged yet, after which the adaptive mesh gives up
 MAX_FAILED_FROM_SCRATCH = 5
 #: nested=False tries the full-contact start with at most these active-set steps and Krylov
-#: iterations per step, and no wider second try (the paper's point takes 9 steps of at most 7
+#: iterations per step, and no wider second try (the paper's point takes 6 steps of at most 9
 #: at 2^20; E_inf/E0 = 1000 at V/V0 = 0.01 stagnated at 300 per step for 50 steps) before the
 #: elastic start
 COLD_DIRECT_STEPS = 20
@@ -62,7 +62,7 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
 
     The problem is solved on a sequence of grids N = 512, 1024, 2048, ... (each started from
     the contact of the previous one).  The differences between the scalars of the last three
-    grids give an a-posteriori estimate of each scalar's discretisation error (see
+    or four grids give an a-posteriori estimate of each scalar's discretisation error (see
     `error_estimate` of the result).  With ``nodes=None`` (the default) the sequence stops at
     the first grid whose estimate meets ``rtol``; with ``nodes`` it stops at that grid.
 
@@ -257,9 +257,9 @@ class _Run:
 
 def _sizes(p: _Problem) -> list:
     """The grids to solve, coarse to fine: a fixed mesh's N and (nested) its exact halvings
-    N/2, N/4, N/8 (the estimate's grids), then quarters N/32, N/128, ... (they only give the
-    next grid its start), down to START_NODES/2, or to N/4 where that is coarser, never below
-    8 panels; on the adaptive mesh START_NODES, 2 START_NODES, ... up to max_nodes."""
+    N/2, N/4, N/8 (the estimate's grids), then quarters N/32, N/128, ... while they stay at or
+    above START_NODES/2 (or N/4 where that is coarser, never below 8 panels) and halvings
+    after (they only give the next grid its start); on the adaptive mesh START_NODES, 2 START_NODES, ... up to max_nodes."""
     if p.nodes is not None:
         low = max(8, min(START_NODES // 2, p.nodes // 4))
         sizes = [p.nodes]
@@ -352,7 +352,7 @@ def _solve_level(p: _Problem, run: _Run, grid, elastic, harmonic) -> dict:
     if direct:
         res = _solve_one(grid, p.load, p.sep, start, p.tol, min(steps, COLD_DIRECT_STEPS),
                          max(p.restart, COLD_DIRECT_RESTART), min(p.max_inner, COLD_DIRECT_INNER),
-                         widen=False)
+                         widen=False, carry=True)
     else:
         res = _solve_one(grid, p.load, p.sep, start, p.tol, steps, p.restart, p.max_inner,
                          elastic=elastic)

@@ -122,7 +122,7 @@ def test_a_fixed_point_that_has_not_settled_gives_no_zero(monkeypatch):
 @pytest.mark.parametrize("jitter, counts", [(5e-10, True), (5e-8, False)])
 def test_a_fixed_point_jittering_at_rounding_still_gives_its_zero(monkeypatch, jitter, counts):
     """On fine grids the fit's zero carries more rounding than 1e-10 h: a fixed point that has
-    converged but still moves by jitter (in h) each pass gives its zero after TAIL_FIT_PASSES
+    converged but still moves by 2 jitter (in h) each pass gives its zero after TAIL_FIT_PASSES
     when that is at most TAIL_FIT_JITTER times the window's extent (here 16 h: 1.6e-9 h), and
     none when it moves more."""
     nodes = 4096

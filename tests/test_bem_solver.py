@@ -327,6 +327,22 @@ def test_cold_start_pressure_carries_the_load():
     assert S._clip_shift(np.full(8, 0.5), 0.5) == 0.0  # nothing to clip
 
 
+def test_only_the_first_try_of_nested_false_lowers_its_start(monkeypatch):
+    """The shifted start is nested=False's own: the nested solve and the elastic starts keep the
+    full-contact pressure clipped at zero."""
+    from bem import _grid as S
+    calls = []
+    plain = S._clip_shift
+    monkeypatch.setattr(S, "_clip_shift", lambda sig, load: calls.append(sig.size) or
+                        plain(sig, load))
+    kw = dict(profile=bem.Sinusoid(1.0), material=SLS, speed=1.0, load=0.3, nodes=4096)
+    cold = bem.solve(nested=False, **kw)
+    assert calls == [4096] and cold.success
+    calls.clear()
+    nested = bem.solve(**kw)
+    assert calls == [] and abs(nested.mu - cold.mu) < TOL_SAME
+
+
 def test_gmres_keeping_its_preconditioned_vectors_saves_one_application_per_cycle():
     """keep=True updates x from the kept M v_j instead of applying M to their combination: the
     same x to rounding, M applied once fewer per restart cycle."""

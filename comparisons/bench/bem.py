@@ -108,7 +108,7 @@ def table_iterations(exponents, out) -> None:
           file=out)
     print("nested: outer steps / GMRES iterations per outer step on the finest grid; "
           "single grid: the same without nested iteration (initial active set from the "
-          "full-contact pressure)", file=out)
+          "full-contact pressure lowered to carry the load once clipped)", file=out)
     print(f"{'N':>8} {'nested nit':>10} {'inner per outer':>18} {'single nit':>10} "
           f"{'inner per outer (single grid)':>40}", file=out)
     for e in exponents:
