@@ -27,6 +27,12 @@ it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.  `
 layer=Layer(thickness=k d, foundation=..., nu=...))`` puts a layer on a rigid foundation in place
 of the half-space (``docs/layers.md``); a `Layer` checks its own inputs, and a thin one limits
 the mesh (``_layer.finest_nodes``).
+
+Surfaces (three-dimensional contact): ``solve_surface`` slides a rigid periodic surface z = h(x,
+y) (`bisinusoid`, `self_affine`, `sampled_surface`, `read_surface`) in any direction over the
+half-space or a layer; each mode of the surface is the line contact's mode loaded at the
+frequency q·V (``docs/surfaces.md``).  Lengths there are over the cell's side Lx, heights
+``k z`` with k = 2 pi/Lx.
 """
 from viscosine import Fields
 from viscosine.checks import positive_int as _positive_int
@@ -39,6 +45,9 @@ from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, r
 from ._layer import Layer
 from ._result import MESSAGES, BemResult, Patch
 from ._solver import solve
+from ._surface import Surface, bisinusoid, read_surface, sampled_surface, self_affine
+from ._surface_result import SurfaceFields, SurfacePatch, SurfaceResult
+from ._surface_solver import max_surface_panels, solve_surface
 
 
 def influence_coefficients(material, speed, nodes):
@@ -68,5 +77,7 @@ def influence_coefficients(material, speed, nodes):
 
 
 __all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES", "MESSAGES", "Patch",
-           "Prony", "SampledProfile", "Sinusoid", "influence_coefficients", "read_profile",
-           "read_prony", "solve", "solve_si", "sweep", "validate"]
+           "Prony", "SampledProfile", "Sinusoid", "Surface", "SurfaceFields", "SurfacePatch",
+           "SurfaceResult", "bisinusoid", "influence_coefficients", "max_surface_panels",
+           "read_profile", "read_prony", "read_surface", "sampled_surface", "self_affine",
+           "solve", "solve_si", "solve_surface", "sweep", "validate"]

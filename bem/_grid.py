@@ -221,14 +221,16 @@ class _Mode:
     dual: bool   # the free-panel step (`_dual_solve`) where most panels are in contact
     roundoff: float = ACTIVE_SET_ROUNDOFF  # the active-set rule's allowance
     seen: dict = field(default_factory=dict)  # key of each active set -> its outer step
+    retreat: bool = True  # the cold start's sped-up retreat of runs (`_speed_up_retreat`)
 
 
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
-                max_inner, cold=False, widen=True):
+                max_inner, cold=False, widen=True, retreat=True):
     """Primal-dual active-set iteration on one grid.  ``cold``: the start is far from the
     answer (no coarser grid gave it): the Krylov solves stop at COLD_KRYLOV_TOL and retreats are
     sped up (`_speed_up_retreat`) until the active set settles; then every step is solved to
-    tol, and only such steps decide convergence.  ``widen``: a stagnated Krylov solve is tried
+    tol, and only such steps decide convergence (``retreat``: with the line's sped-up retreat of
+    runs; a surface has no runs).  ``widen``: a stagnated Krylov solve is tried
     once more with a wider restart (`_with_retry`).  Each outer step is a linear solve on the
     active set (`_step`) and the active-set rule's verdict on it (`_judge`)."""
     n = grid.n
@@ -243,7 +245,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
     mode = _Mode(loose=cold and COLD_KRYLOV_TOL > tol,
                  dual=(load is not None and n >= DUAL_MIN_NODES and not grid.window
-                       and _dual_floor(grid) <= DUAL_MAX_FLOOR * load))
+                       and _dual_floor(grid) <= DUAL_MAX_FLOOR * load), retreat=retreat)
     for it in range(1, max_outer + 1):
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
@@ -333,7 +335,7 @@ def _judge(mode: _Mode, active, sigma, gap, new, grid: _Grid, it):
         mode.seen.clear()
         if key is None:
             return None, None
-    if mode.loose and key is not None and _speed_up_retreat(active, new):
+    if mode.loose and mode.retreat and key is not None and _speed_up_retreat(active, new):
         key = np.packbits(new).tobytes()
     if mode.dual and key is not None and (key in mode.seen or it >= DUAL_MAX_STEPS):
         # the free-panel steps do not settle: their pressures carry the rounding that C^+
@@ -462,19 +464,24 @@ def _clip_shift(sig, load):
 
 
 def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elastic=None,
-               widen=True, carry=False):
+               widen=True, carry=False, prolong=None):
     """Solve one grid, started from the finest coarser grid (``start``: a list holding it or
-    None, emptied here), or else from the elastic contact of ``elastic = (profile, an
+    None, emptied here; ``prolong``: how a coarser grid's answer starts this one, `_prolong`
+    for the line's, else a surface's, whose active set has no runs to speed up), or else from the elastic contact of ``elastic = (profile, an
     elastic Prony)`` on the same grid, or else from scratch: under load control from the
     full-contact pressure clipped at zero, lowered first (`_clip_shift`) with ``carry`` (the
     first try of nested=False) so that it carries the load."""
     best = start.pop() if start else None
     n = grid.n
     full = sig = None
+    line = prolong is None
+    prolong = _prolong if line else prolong
     # no coarser grid of the sequence gives the start: the active set has far to go
-    cold = best is None and n > START_NODES
+    # (a surface's steps are all inexact until its set settles: from a coarser grid its
+    # interpolated edges move at every step)
+    cold = (best is None and n > START_NODES) or not line
     if grid.window:  # started from a coarser grid always
-        active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        active, sigma0, s0 = prolong(best[0], best[1], grid)
         return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
                            max_inner)
     if sep == 0.0:
@@ -512,10 +519,10 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
             sigma0 = np.zeros(n)
         s0 = 0.0 if sep is None else sep
     else:
-        active, sigma0, s0 = _prolong(best[0], best[1], grid)
+        active, sigma0, s0 = prolong(best[0], best[1], grid)
         best = None
         if sep is not None:
             s0 = sep
     return _solve_grid(grid, load, sep, active, sigma0, s0, tol, max_outer, restart, max_inner,
-                       cold, widen)
+                       cold, widen, retreat=line)
 
