@@ -47,7 +47,7 @@ import numpy as np
 from numpy.polynomial import legendre
 from scipy.special import erf
 
-from viscosine import __version__
+import viscosine
 from viscosine.checks import bad, check_reals, is_integer, is_real, real, series
 from viscosine.materials import Maxwell
 from viscosine.protocol import plain
@@ -469,7 +469,7 @@ class Result:
         """The JSON record: inputs, scalars, success, message, error_estimate, diagnostics
         (serialisable with ``allow_nan=False``; non-finite values are None)."""
         j0, jj, tt = self.material
-        rec = {"solver": "persson", "version": __version__, "load": self.load,
+        rec = {"solver": "persson", "version": viscosine.__version__, "load": self.load,
                "speed": self.speed, "hurst": self.hurst, "long_cutoff": self.long_cutoff,
                "rolloff": self.rolloff, "short_cutoff": self.short_cutoff,
                "rms_slope": self.rms_slope, "rms_height": self.rms_height,
