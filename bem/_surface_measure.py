@@ -181,6 +181,12 @@ def _friction(grid, sigma, direction):
         weight[-1] = 1.0  # +ny/2 and -ny/2 share one discrete mode
     m = np.fft.fftfreq(nx, 1.0 / nx)[:, None]
     n = (np.arange(ny // 2 + 1) / grid.aspect)[None, :]
+    # a Nyquist mode stands for wave vectors of both signs along its axis: its derivative
+    # there is zero (their contributions cancel), as in spectral differentiation
+    if nx % 2 == 0:
+        m[nx // 2] = 0.0
+    if ny % 2 == 0:
+        n[0, -1] = 0.0
     c, s = math.cos(direction), math.sin(direction)
     im = grid.op.symbol.imag * power * weight[None, :]
     tau = float(np.sum(im * (m * c + n * s)))
