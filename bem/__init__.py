@@ -47,7 +47,7 @@ from ._result import MESSAGES, BemResult, Patch
 from ._solver import solve
 from ._surface import Surface, bisinusoid, read_surface, sampled_surface, self_affine
 from ._surface_result import SurfaceFields, SurfacePatch, SurfaceResult
-from ._surface_solver import max_surface_panels, solve_surface
+from ._surface_solver import max_surface_panels, solve_surface, validate_surface
 
 
 def influence_coefficients(material, speed, nodes):
@@ -80,4 +80,4 @@ __all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES",
            "Prony", "SampledProfile", "Sinusoid", "Surface", "SurfaceFields", "SurfacePatch",
            "SurfaceResult", "bisinusoid", "influence_coefficients", "max_surface_panels",
            "read_profile", "read_prony", "read_surface", "sampled_surface", "self_affine",
-           "solve", "solve_si", "solve_surface", "sweep", "validate"]
+           "solve", "solve_si", "solve_surface", "sweep", "validate", "validate_surface"]

@@ -21,6 +21,8 @@ import numpy as np
 
 from viscosine.checks import bad, integer, real
 
+from ._inputs import _numbers, _rows
+
 _TWO_PI = 2.0 * math.pi
 
 
@@ -297,6 +299,7 @@ def sampled_surface(heights, aspect: float = 1.0, name: str = "heights") -> Surf
         bad_at = np.argwhere(~np.isfinite(z))[0]
         raise bad(name, f"a non-finite height at row {bad_at[0]}, column {bad_at[1]}",
                   "finite heights everywhere (the surface is periodic: no missing data)")
+    check_periodic_edges(z, name)
     nx, ny = z.shape
     spec = np.fft.rfft2(z, axes=(0, 1)) / (nx * ny)
     m = np.fft.fftfreq(nx, 1.0 / nx).astype(np.int64)
@@ -318,80 +321,62 @@ def sampled_surface(heights, aspect: float = 1.0, name: str = "heights") -> Surf
     return Surface(np.column_stack([mm[keep], nn[keep]]), coeff, aspect, desc)
 
 
-def check_periodic_edges(z, name="heights", tol=0.5):
+def check_periodic_edges(z, name="heights", value=None, tol=0.5):
     """Refuse heights whose opposite edges do not match as a periodic surface's would.
 
     The jump across each edge of the cell is compared with the typical jump between
     neighbouring rows (columns) inside: a surface that was cut out of a larger one without
     making it periodic jumps by far more at its edge.  ``tol``: how many times the largest
-    inside jump (times 1 + tol) the edge jump may be.
+    inside jump (times 1 + tol) the edge jump may be.  ``value``: what the refusal shows as
+    the input (a file's name; default a description of the array).
     """
     z = np.asarray(z, dtype=float)
     for axis, what in ((0, "x (first and last rows)"), (1, "y (first and last columns)")):
         inside = np.max(np.abs(np.diff(z, axis=axis)))
         edge = np.max(np.abs(np.take(z, 0, axis=axis) - np.take(z, -1, axis=axis)))
         if inside > 0 and edge > (1.0 + tol) * inside:
-            raise bad(name, f"edges that jump by {edge:.3g} across {what}",
-                      f"a periodic surface (the jump across the cell's edge at most "
-                      f"{1 + tol:g} x the largest jump inside, {inside:.3g}): the problem is "
-                      "periodic, so the cell must tile the plane")
+            shown = f"an array of shape {z.shape}" if value is None else value
+            raise bad(name, shown, f"a periodic surface: the cell must tile the plane, but its "
+                      f"heights jump by {edge:.3g} across {what}, more than {1 + tol:g} x the "
+                      f"largest jump inside ({inside:.3g})")
 
 
 def read_surface(path, units: str = "conventions", length: float | None = None) -> Surface:
     """Heights on a grid from a text file (whitespace- or comma-separated, '#' comments).
 
     Layout: one row per x panel, one column per y panel (centres ``i/nx - 1/2`` and
-    ``(j/ny - 1/2) aspect``).  A first comment line ``# aspect: A`` sets Ly/Lx (default
-    ny/nx: square panels).  ``units``: ``"conventions"`` for heights ``k z`` (k = 2 pi/Lx),
-    ``"SI"`` for heights in metres, with ``length`` Lx in metres.
+    ``(j/ny - 1/2) aspect``).  A comment line ``# aspect: A`` sets Ly/Lx (default ny/nx:
+    square panels).  ``units``: ``"conventions"`` for heights ``k z`` (k = 2 pi/Lx), ``"SI"``
+    for heights in metres, with ``length`` Lx in metres.  The heights must tile the plane (the
+    problem is periodic: `check_periodic_edges`).
     """
-    p = Path(path)
-    opt = "--surface"
-    if not p.is_file():
-        raise bad(opt, str(path), "a readable file of heights" +
-                  (" (that path is a folder)" if p.is_dir() else " (no such file)"))
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise bad(opt, str(path), f"a readable UTF-8 text file of heights ({exc.__class__.__name__})") from None
+    opt = "surface"
+    rows = _rows(path, opt)
     aspect = None
-    rows = []
-    for lineno, line in enumerate(text.splitlines(), 1):
-        s = line.strip()
-        if s.startswith("#"):
-            key, _, val = s[1:].partition(":")
-            if key.strip().lower() == "aspect":
-                try:
-                    aspect = float(val)
-                except ValueError:
-                    raise bad(opt, str(path), f"an '# aspect: A' line with a number (line {lineno}: "
-                              f"{val.strip()!r})") from None
-            continue
-        if not s:
-            continue
-        toks = s.replace(",", " ").split()
-        try:
-            rows.append([float(t) for t in toks])
-        except ValueError:
-            raise bad(opt, str(path), f"numbers only (line {lineno} has {s[:40]!r})") from None
-    if not rows:
-        raise bad(opt, str(path), "a grid of heights (the file has none)")
-    widths = {len(r) for r in rows}
+    for line in Path(path).read_text(encoding="utf-8").splitlines():
+        key, sep, val = line.strip().lstrip("#").partition(":")
+        if line.strip().startswith("#") and sep and key.strip().lower() == "aspect":
+            try:
+                aspect = float(val)
+            except ValueError:
+                raise bad(opt, str(path), f"an '# aspect: A' line with a number (not "
+                          f"{val.strip()!r})") from None
+    widths = sorted({len(r) for r in rows})
     if len(widths) != 1:
-        raise bad(opt, str(path), "a rectangular grid: every row the same number of heights "
-                  f"(rows have {sorted(widths)} values)")
-    z = np.array(rows)
+        raise bad(opt, str(path), "a rectangular grid of heights: every row as many values "
+                  f"(rows have {widths} values)")
+    z = np.array([_numbers(opt, path, r) for r in rows])
+    if z.shape[0] < 4 or z.shape[1] < 4:
+        raise bad(opt, str(path), f"a grid of at least 4 x 4 heights (it has {z.shape[0]} x "
+                  f"{z.shape[1]})")
     if units == "SI":
         lx = real("length", length, "the cell's side Lx in metres, > 0", lambda v: v > 0.0)
         z = z * (_TWO_PI / lx)
+    elif units != "conventions":
+        raise bad("units", units, "'conventions' (heights k z) or 'SI' (metres, with length)")
     if aspect is None:
         aspect = z.shape[1] / z.shape[0]
-    if not np.all(np.isfinite(z)):
-        i, j = np.argwhere(~np.isfinite(z))[0]
-        raise bad(opt, str(path), f"finite heights (row {i + 1}, column {j + 1} is {z[i, j]})")
-    if z.shape[0] < 4 or z.shape[1] < 4:
-        raise bad(opt, str(path), f"a grid of at least 4 x 4 heights (got {z.shape[0]} x {z.shape[1]})")
-    check_periodic_edges(z, opt)
-    surf = sampled_surface(z, aspect)
+    check_periodic_edges(z, opt, str(path))
+    surf = sampled_surface(z, aspect, name=opt)
     surf._describe.update(file=str(path))
     return surf

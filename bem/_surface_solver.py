@@ -20,6 +20,7 @@ import time
 
 import numpy as np
 
+import viscosine
 from viscosine.checks import bad, positive_int, real
 
 from ._accepted import ACCEPTED, validate
@@ -33,11 +34,10 @@ from ._surface_operator import SpectralOperator, surface_symbol
 from ._surface_measure import measure
 from ._surface_result import SurfaceResult, pressure_moments
 
-#: default accuracy target of the adaptive surface mesh: the estimated errors of μ and Δ/h_ref
-#: (relative) and of the contact fraction (absolute).  The contact area of a panel grid
-#: converges at first order (edges anywhere inside their panels), so 1e-3 needs about 2^9 to
-#: 2^10 panels per side on the bi-sinusoid: seconds to a minute on two cores (docs/surfaces.md)
-SURFACE_RTOL = 1e-3
+#: default accuracy target of the adaptive surface mesh (viscosine.SURFACE_RTOL, the one value
+#: the command line reads too): the estimated errors of μ and Δ/h_ref (relative) and of the
+#: contact fraction (absolute); docs/surfaces.md says why
+SURFACE_RTOL = viscosine.SURFACE_RTOL
 #: the coarsest grid's panels along x (at least; more where the surface's modes need them)
 SURFACE_START = 32
 #: bytes per panel of a surface solve (symbol, fields, transforms, the Krylov basis on the
@@ -178,7 +178,7 @@ def _met(est, rtol) -> bool:
 # --------------------------------------------------------------------------------------------
 def solve_surface(*, load=None, penetration=None, speed, surface=None, direction=0.0,
                   material=None, ratio=None, hk=None, layer=None, nodes=None, rtol=None,
-                  max_panels=None, tol=1e-10, max_outer=50, restart=8, max_inner=300,
+                  max_nodes=None, tol=1e-10, max_outer=50, restart=8, max_inner=300,
                   progress=None) -> SurfaceResult:
     """Steady sliding of a rigid periodic surface over a viscoelastic half-space (3D contact).
 
@@ -212,8 +212,9 @@ def solve_surface(*, load=None, penetration=None, speed, surface=None, direction
     rtol : float, optional
         Adaptive mesh: the target of the estimated errors of μ and Δ/h_ref (relative) and the
         contact fraction (absolute); default 1e-3 (`SURFACE_RTOL`).
-    max_panels : int, optional
-        Adaptive mesh: the largest grid (nx ny); default and bound `max_surface_panels()`.
+    max_nodes : int, optional
+        Adaptive mesh: the most panels along x of the finest grid; default and bound: the
+        largest grid of at most `max_surface_panels()` panels.
     tol, max_outer, restart, max_inner
         As `bem.solve`.
     progress : callable, optional
@@ -230,13 +231,24 @@ def solve_surface(*, load=None, penetration=None, speed, surface=None, direction
     """
     prob = _surface_problem(load=load, penetration=penetration, speed=speed, surface=surface,
                             direction=direction, material=material, ratio=ratio, hk=hk,
-                            layer=layer, nodes=nodes, rtol=rtol, max_panels=max_panels, tol=tol,
+                            layer=layer, nodes=nodes, rtol=rtol, max_nodes=max_nodes, tol=tol,
                             max_outer=max_outer, restart=restart, max_inner=max_inner)
     return _refine(prob, progress)
 
 
+def validate_surface(*, load=None, penetration=None, speed, surface=None, direction=0.0,
+                     material=None, ratio=None, hk=None, layer=None, nodes=None, rtol=None,
+                     max_nodes=None):
+    """Check the inputs of `solve_surface` without solving: ValueError naming the first bad
+    one, its value and what is allowed (the memory a fixed grid asks included)."""
+    _surface_problem(load=load, penetration=penetration, speed=speed, surface=surface,
+                     direction=direction, material=material, ratio=ratio, hk=hk, layer=layer,
+                     nodes=nodes, rtol=rtol, max_nodes=max_nodes, tol=1e-10, max_outer=50,
+                     restart=8, max_inner=300)
+
+
 def _surface_problem(*, load, penetration, speed, surface, direction, material, ratio, hk,
-                     layer, nodes, rtol, max_panels, tol, max_outer, restart, max_inner):
+                     layer, nodes, rtol, max_nodes, tol, max_outer, restart, max_inner):
     if (load is None) == (penetration is None):
         raise bad("load", load, "exactly one of load and penetration "
                   f"(got load={load!r}, penetration={penetration!r})")
@@ -257,10 +269,10 @@ def _surface_problem(*, load, penetration, speed, surface, direction, material, 
     theta = real("direction", direction, "a finite direction in degrees", kind=True)
     if material is None:
         material = Prony.standard_linear_solid(3.0 if ratio is None else ratio)
-    cap = max_surface_panels()
+    cap = max_panels = max_surface_panels()
     if nodes is not None:
         nodes = positive_int("nodes", nodes, 8)
-        for name, v in (("rtol", rtol), ("max_panels", max_panels)):
+        for name, v in (("rtol", rtol), ("max_nodes", max_nodes)):
             if v is not None:
                 raise bad(name, v, f"nothing with nodes={nodes}: {name} steers the adaptive mesh")
         mx, my = surface.min_nodes()
@@ -279,14 +291,19 @@ def _surface_problem(*, load, penetration, speed, surface, direction, material, 
         rtol = SURFACE_RTOL if rtol is None else real(
             "rtol", rtol, "a finite accuracy target in [1e-8, 1e-1]", lambda v: 1e-8 <= v <= 0.1,
             kind=True)
-        max_panels = cap if max_panels is None else positive_int("max_panels", max_panels, 64)
-        if max_panels > cap:
-            raise bad("max_panels", max_panels, f"at most {cap} panels (half of this machine's "
-                      f"memory at {SURFACE_BYTES_PER_PANEL} bytes per panel)")
+        if max_nodes is not None:
+            max_nodes = positive_int("max_nodes", max_nodes, 8)
+            ny = _ny_for(max_nodes, surface.aspect)
+            if max_nodes * ny > cap:
+                raise bad("max_nodes", max_nodes, f"a finest grid that fits in memory: "
+                          f"{max_nodes} x {ny} panels take about "
+                          f"{max_nodes * ny * SURFACE_BYTES_PER_PANEL / 2**30:.1f} GiB, and half "
+                          f"of this machine's memory is {_memory() / 2 / 2**30:.1f} GiB")
+            max_panels = max_nodes * ny
     sep = None if penetration is None else amp * (1.0 - float(penetration))
     shapes = _shapes(surface, nodes, max_panels)
     if not shapes:
-        raise bad("max_panels", max_panels, "room for the coarsest grid the surface needs "
+        raise bad("max_nodes", max_nodes, "room for the coarsest grid the surface needs "
                   f"({surface.min_nodes()} panels)")
     return {"surface": surface, "material": material, "speed": float(speed),
             "direction": math.radians(theta), "degrees": theta, "layer": layer,

@@ -84,6 +84,50 @@ def check_record(rec, spec, constraints=None, fields=None):
             return f"invalid result: {k} = {rec[k]!r} < 0 (friction must resist the motion)"
     if not rec["load"] > 0.0:
         return f"invalid result: load = {rec['load']!r} ≤ 0"
+    problem = _controls_and_constraints(rec, spec, constraints)
+    if problem:
+        return problem
+    if fields is not None:
+        for name, arr in fields.as_dict().items():
+            if not np.all(np.isfinite(arr)):
+                return f"invalid result: the field {name} is not finite"
+    return None
+
+
+#: the scalars every surface record holds (conventions.md, 'Surfaces')
+SURFACE_KEYS = ("full_contact", "contact_fraction", "penetration", "tau_f", "mu", "mu_lateral",
+                "n_patches", "max_pressure")
+
+
+def check_surface_record(rec, spec, constraints=None):
+    """`check_record` for a surface (three-dimensional contact): the road says success, the
+    surface scalars are there and finite, 0 < Δ/h_ref ≤ 1, 0 < contact fraction ≤ 1, μ ≥ 0,
+    the load (or Δ/h_ref) asked for, and the constraint figures when given."""
+    if not isinstance(rec, dict):
+        return "no record"
+    if rec.get("success") is False:
+        return one_line(rec.get("message") or "the solver reports failure")
+    missing = [k for k in ("load", "speed", "direction") + SURFACE_KEYS if k not in rec]
+    if missing:
+        return f"invalid result: keys {', '.join(missing)} missing"
+    bad = _nonfinite(rec)
+    if bad:
+        return f"invalid result: {bad} is not a finite number"
+    one = 1.0 + RANGE_ROUNDOFF
+    if not 0.0 < rec["penetration"] <= one:
+        return f"invalid result: penetration Δ/h_ref = {rec['penetration']!r} outside (0, 1]"
+    if not 0.0 < rec["contact_fraction"] <= one:
+        return f"invalid result: contact_fraction = {rec['contact_fraction']!r} outside (0, 1]"
+    for k in ("mu", "tau_f"):
+        if rec[k] < -RANGE_ROUNDOFF:
+            return f"invalid result: {k} = {rec[k]!r} < 0 (friction must resist the motion)"
+    if not rec["load"] > 0.0:
+        return f"invalid result: load = {rec['load']!r} ≤ 0"
+    return _controls_and_constraints(rec, spec, constraints)
+
+
+def _controls_and_constraints(rec, spec, constraints):
+    """The achieved control against the asked one, and the constraint figures (or None)."""
     for k in ("load", "penetration"):
         asked = spec.get(k)
         if asked is not None and abs(rec[k] / asked - 1.0) > CONTROL_MISMATCH:
@@ -98,10 +142,6 @@ def check_record(rec, spec, constraints=None, fields=None):
         if constraints["mean_pressure_error"] > CONTROL_MISMATCH:
             return (f"invalid result: mean σ differs from the load by "
                     f"{constraints['mean_pressure_error']:.3e} (relative)")
-    if fields is not None:
-        for name, arr in fields.as_dict().items():
-            if not np.all(np.isfinite(arr)):
-                return f"invalid result: the field {name} is not finite"
     return None
 
 

@@ -29,7 +29,8 @@ def describe(spec) -> str:
 
 
 def write_fields(path, out, spec) -> None:
-    """Write the fields of a solved point (`runner.run`'s ``out``) to the CSV file ``path``.
+    """Write the fields of a solved point (`runner.run`'s ``out``) to the CSV file ``path`` (a
+    surface's to the ``.npz`` file ``path``).
 
     Raises
     ------
@@ -38,6 +39,9 @@ def write_fields(path, out, spec) -> None:
     """
     f = out["fields"]
     try:
+        if spec.get("surface") is not None:  # a surface's fields: .npz (conventions.md)
+            f.save(path)
+            return
         write_fields_csv(path, f, runner.fields_header(out["record"], spec, f))
     except OSError as exc:
         raise Failed(f"cannot write --fields {path} ({exc.strerror or exc})") from None
@@ -96,15 +100,17 @@ def _fmt_value(v):
 
 
 def field_file_name(spec, used, index):
-    """``<solver>_<control><value>_speed<value>.csv``; unique within `used` (then ``_<index>``).
+    """``<solver>_<control><value>_speed<value>.csv`` (``.npz`` for a surface); unique within
+    `used` (then ``_<index>``).
 
     Only digits, letters, ``.``, ``+``, ``-`` and ``_`` appear (floats are finite, validated).
     """
     ctl = "load" if spec.get("load") is not None else "penetration"
     stem = f"{spec['solver']}_{ctl}{_fmt_value(spec[ctl])}_speed{_fmt_value(spec['speed'])}"
-    name = f"{stem}.csv"
+    ext = ".npz" if spec.get("surface") is not None else ".csv"
+    name = f"{stem}{ext}"
     if name in used:
-        name = f"{stem}_{index + 1}.csv"
+        name = f"{stem}_{index + 1}{ext}"
     used.add(name)
     return name
 

@@ -181,6 +181,71 @@ def bem_record(spec, problem, want_fields):
     return Solved(rec, f if want_fields else None, c)
 
 
+# ------------------------------------------------------------------------------ surfaces
+def surface(description, parsed=None):
+    """The BEM's surface (``bem.Surface``) of a spec's plain ``surface`` description: a
+    bi-sinusoid, a self-affine surface (its seed fixes it), or a file's (``parsed`` when read
+    already).  The constructors check the values, naming the parameter."""
+    import bem
+    kind = description["kind"]
+    aspect = description.get("aspect")
+    aspect = 1.0 if aspect is None else aspect
+    if kind == "bisinusoid":
+        hk = description.get("hk")
+        return bem.bisinusoid(1.0 if hk is None else hk, description.get("hk_y"), aspect)
+    if kind == "self_affine":
+        kw = {k: description[k] for k in ("hurst", "rolloff", "short_cutoff", "long_cutoff",
+                                          "rms_slope", "rms_height", "seed")
+              if description.get(k) is not None}
+        return bem.self_affine(**kw, aspect=aspect)
+    return parsed if parsed is not None else bem.read_surface(description["path"])
+
+
+def read_surface(path):
+    """A file of heights k z on a grid, read by the BEM's own reader (``bem.read_surface``)."""
+    import bem
+    return bem.read_surface(path)
+
+
+def _surface_kwargs(spec, material, parsed):
+    """bem.solve_surface's keywords for a surface spec (``material``: None for the standard
+    linear solid of its ``ratio``; ``parsed``: a surface file's Surface, when read)."""
+    kw = dict(_controls(spec), speed=spec["speed"], direction=spec["direction"],
+              surface=surface(spec["surface"], parsed))
+    if material is not None:
+        kw["material"] = material
+    else:
+        kw["ratio"] = spec["ratio"]
+    for name in ("nodes", "rtol", "max_nodes"):
+        if spec.get(name) is not None:
+            kw[name] = spec[name]
+    if spec.get("layer") is not None:
+        kw["layer"] = layer(spec["layer"])
+    return kw
+
+
+def validate_surface(spec, material, parsed):
+    """``bem.validate_surface`` on a surface spec (ValueError naming the first bad input)."""
+    import bem
+    bem.validate_surface(**_surface_kwargs(spec, material, parsed))
+
+
+def surface_record(spec, material, parsed, want_fields):
+    """Adapter of the surface BEM (``bem.solve_surface`` → record, fields, constraints); the
+    constraint figures from the panel values (σ ≥ 0 over max σ, gap ≥ 0 over h_ref, mean σ
+    against the load), as on the line."""
+    import bem
+    res = bem.solve_surface(**_surface_kwargs(spec, material, parsed))
+    rec = res.as_dict()
+    if not res.success:
+        return Solved(rec, None, None)
+    smax = float(np.max(res.pressure))
+    c = {"min_pressure": float(np.min(res.pressure)) / smax if smax > 0 else 0.0,
+         "min_gap": float(np.min(res.gap)),
+         "mean_pressure_error": abs(float(np.mean(res.pressure)) / res.load - 1.0)}
+    return Solved(rec, res.fields() if want_fields else None, c)
+
+
 # ------------------------------------------------------------------------------ operating points
 def point_controls(point):
     """``{"load": p̃∞}`` or ``{"penetration": Δ/h}`` of an operating point dict, as a float."""

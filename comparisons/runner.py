@@ -39,7 +39,7 @@ import viscosine
 from viscosine import ViscosineWarning
 
 from . import roads
-from .gate import check_record
+from .gate import check_record, check_surface_record
 from ._errors import BadInput
 from ._errors import one_line as _one_line
 from ._io import file_bytes
@@ -73,7 +73,8 @@ def public(spec):
 
 def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=None, nodes=None,
             rtol=None, max_nodes=None, profile=None, prony=None, fields=False, files=None,
-            material=None, material_options=None, si=None, layer=None):
+            material=None, material_options=None, si=None, layer=None, surface=None,
+            direction=None):
     """Command-line options (None = not given) → spec, with the defaults applied here only.
 
     Options that do not apply to the chosen inputs are refused, never recorded as if used:
@@ -98,6 +99,11 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
     layer : dict, optional
         ``--thickness``: ``{"thickness_over_wavelength", "foundation", "nu"}``, BEM only; the
         spec's ``layer`` (checked by the BEM's Layer in `validate`).
+    surface : dict, optional
+        ``--surface``: the plain description of `comparisons.cli._common.surface_description`
+        (BEM only); the spec then carries ``surface`` and ``direction`` (degrees), its ``hk`` is
+        None (a bi-sinusoid's amplitudes are in the description) and its default ``rtol`` is
+        ``viscosine.SURFACE_RTOL``.  A surface FILE is read here (``files["surface"]``).
 
     Raises
     ------
@@ -149,6 +155,9 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
         spec["si"] = si
     if layer is not None:  # likewise
         spec["layer"] = dict(layer)
+    if surface is not None:  # likewise
+        spec["surface"] = dict(surface)
+        spec["direction"] = 0.0 if direction is None else direction
     if solver == "analytic":
         spec["ratio"] = DEFAULTS["ratio"] if ratio is None else ratio
         spec["hk"] = DEFAULTS["hk"] if hk is None else hk
@@ -161,12 +170,20 @@ def resolve(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=N
             files[option] = read_input(option, path)
     if material is not None and "material" not in files:
         files["material"] = read_material(material, **options, si=in_si)
+    if surface is not None and surface.get("kind") == "file":
+        if "surface" not in files:
+            files["surface"] = read_input("surface", surface["path"])
+        info, obj = files["surface"]
+        spec["surface"] = {"kind": "file", **info}
+        spec["_surface"] = obj
     fixed = prony is not None or material is not None
     spec["ratio"] = None if fixed else (DEFAULTS["ratio"] if ratio is None else ratio)
-    spec["hk"] = None if profile is not None else (DEFAULTS["hk"] if hk is None else hk)
+    spec["hk"] = None if profile is not None or surface is not None else (
+        DEFAULTS["hk"] if hk is None else hk)
     spec["nodes"] = nodes
     if nodes is None:
-        spec["rtol"] = DEFAULTS["rtol"] if rtol is None else rtol
+        default = viscosine.SURFACE_RTOL if surface is not None else DEFAULTS["rtol"]
+        spec["rtol"] = default if rtol is None else rtol
         spec["max_nodes"] = max_nodes
     for option in ("profile", "prony", "material"):
         if option in files:
@@ -323,7 +340,7 @@ def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_res
 
 # ------------------------------------------------------------------------------ input files
 def read_input(option, path):
-    """Read a --profile or --prony file: ``({"path", "sha256"}, parsed object)``.
+    """Read a --profile, --prony or --surface file: ``({"path", "sha256"}, parsed object)``.
 
     The file must be a regular UTF-8 text file; the parsing is the BEM's own
     (`bem.read_profile`, `bem.read_prony`, through `comparisons.roads`).  Every refusal names
@@ -335,7 +352,8 @@ def read_input(option, path):
     """
     where = f"--{option} {path}"
     data = file_bytes(f"--{option}", path)
-    reader = roads.read_profile if option == "profile" else roads.read_prony
+    reader = {"profile": roads.read_profile, "prony": roads.read_prony,
+              "surface": roads.read_surface}[option]
     try:
         obj = reader(path)
     except (ValueError, UnicodeDecodeError, OSError) as exc:
@@ -358,6 +376,8 @@ def validate(spec):
             n = spec.get("field_points")
             if n is not None:
                 _check_int("nodes", n, *FIELD_POINTS, "points of the written fields")
+        elif spec["solver"] == "bem" and spec.get("surface") is not None:
+            roads.validate_surface(spec, _bem_problem(spec)[1], _surface(spec))
         elif spec["solver"] == "bem":
             roads.validate_bem(spec, _bem_problem(spec))
         else:
@@ -390,6 +410,14 @@ def _bem_problem(spec):
     elif spec.get("material") is not None:
         material = _material(spec).prony
     return profile, material
+
+
+def _surface(spec):
+    """A surface file's parsed Surface (carried in the spec, else read again), or None."""
+    if spec["surface"].get("kind") != "file":
+        return None
+    obj = spec.get("_surface")
+    return obj if obj is not None else read_input("surface", spec["surface"]["path"])[1]
 
 
 def _material(spec):
@@ -455,7 +483,10 @@ def run(spec, fields=False, deep=None):
     try:
         with _warnings.catch_warnings(record=True) as caught:
             _warnings.simplefilter("always")
-            if spec["solver"] == "bem":
+            if spec["solver"] == "bem" and spec.get("surface") is not None:
+                solved = roads.surface_record(spec, _bem_problem(spec)[1], _surface(spec),
+                                              fields)
+            elif spec["solver"] == "bem":
                 solved = roads.bem_record(spec, _bem_problem(spec), fields)
             else:
                 n = spec.get("field_points") or DEFAULTS["field_points"]
@@ -477,7 +508,10 @@ def run(spec, fields=False, deep=None):
                 extra.append(f"extrapolation: {text}")
         if extra:  # warnings raised during the solve belong to this point
             rec["warnings"] = list(rec.get("warnings") or []) + extra
-        problem = check_record(rec, spec, solved.constraints, solved.fields)
+        if spec.get("surface") is not None:
+            problem = check_surface_record(rec, spec, solved.constraints)
+        else:
+            problem = check_record(rec, spec, solved.constraints, solved.fields)
     except Exception as exc:  # any failure of the solve: this point could not be solved
         out["error"] = f"could not solve: {type(exc).__name__}: {_one_line(exc)}"
     else:

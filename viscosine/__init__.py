@@ -39,6 +39,9 @@ __version__ = "0.2.0"
 #: without --rtol): every estimated error of mu, Delta/h, ka, ke below it.  Here, not in bem, so
 #: that the command line reads the one value without importing the solver
 DEFAULT_RTOL = 1e-6
+#: the default accuracy target of a surface (three-dimensional contact): every estimated error
+#: of mu, Delta/h_ref (relative) and the contact fraction (absolute) below it (docs/surfaces.md)
+SURFACE_RTOL = 1e-3
 
 _LAZY = {"analytic", "bem", "comparisons"}
 
@@ -49,4 +52,4 @@ def __getattr__(name):  # the roads are imported only when asked for
     raise AttributeError(f"module 'viscosine' has no attribute {name!r}")
 
 
-__all__ = ["DEFAULT_RTOL", "Fields", "SIResult", "ViscosineWarning", "__version__", "analytic", "bem", "comparisons"]
+__all__ = ["DEFAULT_RTOL", "SURFACE_RTOL", "Fields", "SIResult", "ViscosineWarning", "__version__", "analytic", "bem", "comparisons"]

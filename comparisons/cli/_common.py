@@ -14,7 +14,8 @@ from .._io import check_output_dir, check_output_file, stderr
 __all__ = ["EXIT_OK", "EXIT_FAILED", "EXIT_BAD_INPUT", "MAX_RANGE_COUNT", "BadInput", "Failed",
            "Parser", "Once", "number", "integer", "log_range", "solver_options",
            "parallel_options", "accepted_ranges", "check_output_file", "check_output_dir",
-           "check_workers", "resolve", "units_si", "material_options", "validate", "stderr"]
+           "check_workers", "resolve", "units_si", "material_options", "validate", "stderr",
+           "surface_description"]
 
 EXIT_OK, EXIT_FAILED, EXIT_BAD_INPUT = 0, 1, 2
 #: one log range START:STOP:COUNT holds at most this many values
@@ -175,6 +176,7 @@ def solver_options(p, several):
     p.add_argument("--foundation", choices=["bonded", "frictionless"], action=Once,
                    help="with --thickness: the layer's lower face bonded to the foundation, or "
                         "lying on it without friction")
+    surface_options(p)
     p.add_argument("--units", choices=["conventions", "SI"], action=Once,
                    help="SI: --load is p∞ [Pa] (--penetration Δ [m]), --speed V [m/s], with "
                         "--nu, --wavelength, --amplitude and the material (--E0 --Einf with "
@@ -193,6 +195,86 @@ def solver_options(p, several):
                               (("--amplitude",), "m", "h of the sinusoid")):
         p.add_argument(*names, type=number, action=Once, metavar="X",
                        help=f"--units SI: {what} [{unit}]")
+
+
+def surface_options(p):
+    """The options of a surface (three-dimensional contact; BEM only; docs/surfaces.md)."""
+    g = p.add_argument_group("surfaces (BEM only: a rigid periodic surface z = h(x, y) on a "
+                             "cell Lx x Ly, lengths over Lx, heights as k z with k = 2π/Lx)")
+    g.add_argument("--surface", action=Once, metavar="{bisinusoid,self-affine,FILE}",
+                   help="the surface: bisinusoid (h cos kx + h_y cos 2πy/Ly: --hk, --hk-y, "
+                        "--aspect), self-affine (--hurst --rolloff --short-cutoff "
+                        "[--long-cutoff] --rms-slope|--rms-height [--seed] [--aspect]) or a "
+                        "FILE of heights k z on a grid (rows along x, columns along y; "
+                        "bem.read_surface)")
+    g.add_argument("--direction", type=number, action=Once, metavar="DEG",
+                   help="sliding direction θ in degrees from +x, counter-clockwise (default 0)")
+    for name, what in (("--hk-y", "bisinusoid: k h_y, the amplitude along y (default --hk; 0: "
+                                  "uniform in y, the line contact extruded)"),
+                       ("--aspect", "Ly/Lx of the cell (default 1; a FILE's may say it in a "
+                                    "'# aspect: A' line)"),
+                       ("--hurst", "self-affine: Hurst exponent H in (0, 1)"),
+                       ("--rolloff", "self-affine: roll-off wavenumber q_r/k"),
+                       ("--short-cutoff", "self-affine: short-wavelength cut-off q_s/k (≤ 512)"),
+                       ("--long-cutoff", "self-affine: long-wavelength cut-off q_l/k ≥ 1 "
+                                         "(default 1)"),
+                       ("--rms-slope", "self-affine: rms slope sqrt<|∇z|²> (or --rms-height)"),
+                       ("--rms-height", "self-affine: rms height k z_rms (or --rms-slope)")):
+        g.add_argument(name, type=number, action=Once, metavar="X", help=what)
+    g.add_argument("--seed", type=integer, action=Once, metavar="N",
+                   help="self-affine: seed of the random phases (default 0)")
+
+
+#: the self-affine surface's options and the keywords of bem.self_affine behind them
+_SELF_AFFINE = {"hurst": "--hurst", "rolloff": "--rolloff", "short_cutoff": "--short-cutoff",
+                "long_cutoff": "--long-cutoff", "rms_slope": "--rms-slope",
+                "rms_height": "--rms-height", "seed": "--seed"}
+
+
+def surface_description(args):
+    """The spec's ``surface`` (a plain dict) of --surface and its options, or None without
+    --surface (options of a surface without it are refused).  The values as given: the BEM's
+    surface constructors check them (`runner.validate`)."""
+    given = {k: getattr(args, k) for k in ("hk_y", "aspect", "direction", *_SELF_AFFINE)}
+    if args.surface is None:
+        extra = [k for k, v in given.items() if v is not None]
+        if extra:
+            name = _SELF_AFFINE.get(extra[0], "--" + extra[0].replace("_", "-"))
+            raise BadInput(f"{name} is not allowed without --surface: an option of a surface "
+                           "(three-dimensional contact)")
+        return None
+    if args.solver != "bem":
+        raise BadInput(f"--surface {args.surface} is not allowed here: a BEM option (the "
+                       "semi-analytic road solves the line contact; use --solver bem)")
+    if args.profile is not None:
+        raise BadInput("--profile is not allowed with --surface: the surface replaces the "
+                       "profile")
+    if args.units == "SI":
+        raise BadInput("--units SI is not allowed with --surface yet: give the dimensionless "
+                       "groups (lengths over Lx, heights k z, speed V τ k with k = 2π/Lx)")
+    kind = args.surface
+    desc = {"aspect": given["aspect"]}
+    if kind == "bisinusoid":
+        wrong = [k for k in _SELF_AFFINE if given[k] is not None]
+        if wrong:
+            raise BadInput(f"{_SELF_AFFINE[wrong[0]]} is not allowed with --surface bisinusoid: "
+                           "an option of --surface self-affine")
+        desc.update(kind="bisinusoid", hk=args.hk, hk_y=given["hk_y"])
+    elif kind == "self-affine":
+        if args.hk is not None or given["hk_y"] is not None:
+            raise BadInput(f"--{'hk' if args.hk is not None else 'hk-y'} is not allowed with "
+                           "--surface self-affine: its relief is set by --rms-slope or "
+                           "--rms-height")
+        desc.update(kind="self_affine", **{k: given[k] for k in _SELF_AFFINE})
+    else:
+        if args.hk is not None or given["hk_y"] is not None or any(
+                given[k] is not None for k in _SELF_AFFINE):
+            extra = "--hk" if args.hk is not None else "--hk-y" if given["hk_y"] is not None \
+                else next(_SELF_AFFINE[k] for k in _SELF_AFFINE if given[k] is not None)
+            raise BadInput(f"{extra} is not allowed with --surface FILE: the file fixes the "
+                           "surface")
+        desc.update(kind="file", path=kind)
+    return desc
 
 
 def parallel_options(p, what):
@@ -245,8 +327,10 @@ def check_workers(args):
 
 def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=None):
     """The spec of point's and sweep's options (`runner.resolve`: defaults, what applies)."""
+    surface = surface_description(args)
     return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
-                          ratio=args.ratio, hk=args.hk, nodes=args.nodes, rtol=args.rtol,
+                          ratio=args.ratio, hk=None if surface else args.hk, nodes=args.nodes,
+                          rtol=args.rtol, surface=surface, direction=args.direction,
                           max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
                           fields=args.fields is not None, files=files, material=args.material,
                           material_options={**material_options(args),
@@ -349,7 +433,9 @@ def _option_names(text):
     """'max_nodes=…' in a road's message becomes '--max-nodes …' (the option the user typed)."""
     m = re.match(r"(\w+)=(\S+) is not allowed", text)
     if m and m.group(1) in ("load", "penetration", "speed", "ratio", "hk", "nodes", "rtol",
-                            "max_nodes", "foundation", "nu"):
+                            "max_nodes", "foundation", "nu", "direction", "hk_y", "aspect",
+                            "hurst", "rolloff", "short_cutoff", "long_cutoff", "rms_slope",
+                            "rms_height", "seed"):
         return f"--{m.group(1).replace('_', '-')} {m.group(2)}{text[m.end(2):]}"
     if m and m.group(1) == "thickness_over_wavelength":
         return f"--thickness (d/λ) {m.group(2)}{text[m.end(2):]}"

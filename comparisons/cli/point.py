@@ -14,8 +14,9 @@ def add_parser(sub):
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     p.epilog_maker = accepted_ranges
     solver_options(p, several=False)
-    p.add_argument("--fields", action=Once, metavar="FILE.csv",
-                   help="also write σ, v and the gap over one period to this CSV file")
+    p.add_argument("--fields", action=Once, metavar="FILE",
+                   help="also write σ, v and the gap over one period to this CSV file (with "
+                        "--surface: a .npz file of the grid and the fields, read by numpy.load)")
     p.set_defaults(run=run)
 
 
