@@ -26,7 +26,9 @@ class SurfacePatch:
     Attributes
     ----------
     area : float
-        Its area over the cell's (its share of the contact fraction).
+        Its panels' area over the cell's (a count of panels: the result's contact fraction
+        places the edges inside their panels, so the patches' areas add up to it only to
+        within the panels along the edges).
     load : float
         Its share of the mean pressure p̃∞ (the patches' loads add up to p̃∞).
     panels : int
@@ -130,8 +132,9 @@ class SurfaceResult:
     residuals, levels, diagnostics : mapping, tuple, mapping
         The residuals of the answer (complementarity, gaps, load balance, the Krylov
         residual, and ``friction_mismatch``: the dissipation and direct forms of μ, a
-        discretisation indicator), the grids solved ((nx, ny, nit, status)), and what else
-        the solver says.
+        discretisation indicator), the grids solved ((nx, ny, nit, status, FFT pairs)), and
+        what else the solver says (``fft_pairs``: the transform pairs of each grid, the
+        measurements included).
     """
 
     success: bool

@@ -183,7 +183,8 @@ def solve_surface(*, load=None, penetration=None, speed, surface=None, direction
     """Steady sliding of a rigid periodic surface over a viscoelastic half-space (3D contact).
 
     The mode of wave vector q of the surface displacement is the line contact's mode loaded at
-    the frequency q·V: ``k u_q = (2/|q|) J*(q·e w) S(|q| k d) σ_q`` (eq. 2.5 of Menga et al.
+    the frequency q·V: ``k u_q = (2/|q|) J*(q·e) S(|q| k d) σ_q`` with J*(n) the line contact's
+    compliance of the mode n at the speed w (eq. 2.5 of Menga et al.
     (2014) in Fourier space, extended to the plane; ``docs/surfaces.md``).  Solved on grids of
     nx x ny panels, each twice as fine as the one before, by the line contact's active set.
 
@@ -329,11 +330,12 @@ def _refine(p: dict, progress) -> SurfaceResult:
         start = [best] if best is not None else [None]
         res = _solve_one(grid, p["load"], p["sep"], start, p["tol"], p["max_outer"],
                          p["restart"], p["max_inner"], carry=best is None, prolong=_prolong)
-        levels.append((nx, ny, res["nit"], res["status"]))
+        levels.append((nx, ny, res["nit"], res["status"], grid.op.transforms / 2.0))
         last = (res, grid)
         if res["status"] == CONVERGED:
             failed = 0
             sc = measure(res, grid, p["surface"], p["direction"], p["load"])
+            levels[-1] = levels[-1][:4] + (grid.op.transforms / 2.0,)
             converged.append((nx, sc, res, grid))
             best = (res, grid)
             run = [c[1] for c in reversed(converged[-4:])]
@@ -388,6 +390,7 @@ def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
     if status == CONVERGED and est is None:
         warnings.append(f"no error estimate: {reason}")
     diagnostics = {"grids": [[lv[0], lv[1]] for lv in levels],
+                   "fft_pairs": [lv[4] for lv in levels],
                    "memory_lengths": [p["speed"] * t / (2.0 * math.pi) for _, t in
                                       p["material"].terms]}
     if p["layer"] is not None:

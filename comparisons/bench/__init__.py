@@ -8,7 +8,8 @@ BEM sweep (default 2000 points at N = 4096) in this process, in two local proces
 two-worker local Dask cluster, and checks that all three return the same records in the same
 order.  `--honesty` (`trust`), `--materials` (`materials`) and `--accepted` (`accepted`) are
 the studies of the BEM's error estimates, of broad Prony spectra and of the semi-analytic road
-over its accepted inputs.  Every table says how loaded the machine was (load average).
+over its accepted inputs; `--surfaces` (`surfaces`) the cost of the surface BEM beside
+Tamaas's elastic solver and its adaptive default.  Every table says how loaded the machine was (load average).
 """
 from __future__ import annotations
 
@@ -143,6 +144,10 @@ def run(args):
                                     light=args.light)
         return trust.honesty(300 if args.points is None else args.points, seed,
                              light=args.light)
+    if args.surfaces:
+        from . import surfaces
+        surfaces.run(12 if args.max_log2n is None else args.max_log2n)
+        return 0
     if args.accepted:
         from . import accepted
         return accepted.measure(1000 if args.points is None else args.points,

@@ -22,6 +22,10 @@ def add_parser(sub):
                         "through `point --solver bem --prony`, against the Fourier reference "
                         "(analytic.fourier_solve), with the standard linear solid's cost "
                         "(default 200 points)")
+    g.add_argument("--surfaces", action="store_true",
+                   help="the surface BEM: fixed grids 256² … 2^K a side (default K = 12) with "
+                        "time, FFT pairs and memory per panel beside Tamaas's elastic solve, and "
+                        "its adaptive default against the fixed grid it ends on")
     g.add_argument("--accepted", action="store_true",
                    help="the semi-analytic road over a random sample of analytic.ACCEPTED: "
                         "valid answers, the worst consistency residuals, every failure "
@@ -42,7 +46,8 @@ def add_parser(sub):
                    help="with --materials: local processes that share the points (default 1; "
                         "the printed rows and figures do not depend on it)")
     p.add_argument("--max-log2n", type=integer, action=Once, metavar="K",
-                   help="largest BEM mesh 2^K of the BEM speed/memory table (default 20)")
+                   help="largest BEM mesh 2^K of the BEM speed/memory table (default 20; with "
+                        "--surfaces the largest grid 2^K a side, default 12)")
     p.set_defaults(run=run)
 
 
