@@ -9,7 +9,9 @@ below, at and above the friction peak with its time step halved twice, against b
 it is not installed, its section says how to install it).  A layer of finite thickness on a rigid
 foundation, bonded or frictionless (`layers_section`), is solved by the BEM alone: μ and 2a/λ
 against speed per thickness at p̃∞ = 0.3, and the full-contact load against thickness beside its
-closed form (`docs/layers.md`).
+closed form (`docs/layers.md`).  A rigid periodic surface sliding over the half-space
+(`comparisons.report_surfaces`) is solved by the surface BEM: checks against the line contact,
+its pressure map, μ against speed and direction, and Persson's theory.
 
 Every run (BEM or Tamaas) is its own file in `DIR/results/`, written as soon as it is finished
 (`store.py`), so an interrupted report loses nothing and `--resume` does not recompute what is
@@ -40,7 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from . import _html, crosscheck, report_runs
+from . import _html, crosscheck, report_runs, report_surfaces
 from . import report_numbers as numbers
 from ._io import write_text
 from .peers.tamaas import CELLS_PER_STEP
@@ -110,6 +112,7 @@ def bem_runs(cfg):
         for s in tamaas_speeds()[2]:
             runs.append((bem_spec(TAMAAS_LOAD, s, N), False))
     runs.extend(numbers.layer_runs(N, cfg.layer_speeds))                  # a layer
+    runs.extend(report_surfaces.surface_runs(cfg.quick))                  # surfaces
     # one run per spec (its store key: a layer's spec holds a dict); it keeps its fields if any
     # figure needs them
     merged = {}
@@ -256,6 +259,8 @@ def introduction(doc, cfg, failures):
     doc.p("Contents: the material; the paper's figures 3–12 with both roads; fields; scalars; "
           "the two roads' agreement on a grid of operating points; the BEM's convergence; "
           "a layer of finite thickness (the BEM and the closed-form full-contact load); "
+          "surfaces (three-dimensional contact: checks against the line contact, the pressure "
+          "map, μ against speed and direction, Persson's theory); "
           + ("a third code, Tamaas, against both roads; " if tamaas_installed() else
              "a third code, Tamaas: **not in this report**, it is not installed (see its "
              "section: `pip install '.[peers]'` from a clone, then `--resume`); ")
@@ -685,6 +690,8 @@ def write_report(folder, store, cfg, timings, failures, where=None):
     convergence_section(doc, folder, store, cfg)
     doc.h(2, "A layer of finite thickness")
     layers_section(doc, folder, store, cfg, timings)
+    doc.h(2, "Surfaces: a rigid periodic surface sliding (three-dimensional contact)")
+    report_surfaces.surfaces_section(doc, folder, store, cfg, timings, _png)
     doc.h(2, "A third code: Tamaas")
     tamaas_section(doc, folder, store, cfg, timings)
     doc.h(2, "Provenance")

@@ -64,6 +64,9 @@ def _progress(i, n, t0, spec, out):
     what = f"load={spec['load']}" if spec["load"] is not None else f"Δ/h={spec['penetration']}"
     if spec["solver"] == "tamaas":
         solver = f"tamaas N={spec['nodes']} dt={spec['cells_per_step']}·T/N"
+    elif spec.get("surface") is not None:
+        solver = (f"bem surface {spec['surface']['kind']} {spec['nodes']}² "
+                  f"θ={spec['direction']:g}°")
     else:
         solver = f"bem N={spec['nodes']}"
         layer = spec.get("layer")
@@ -91,6 +94,8 @@ def _cost(spec):
         # (measured: 3, 4 and 8 periods at V/V0 = 0.35, 1.06 and 3.2)
         periods = 3.0 + 1.6 * max(spec["speed"] - 0.3, 0.0)
         return 10.0 * periods * spec["nodes"] ** 2 / spec["cells_per_step"]
+    if spec.get("surface") is not None:  # nodes a side: N² log N
+        return float(spec["nodes"]) ** 2
     return float(spec["nodes"])
 
 

@@ -246,6 +246,19 @@ def surface_record(spec, material, parsed, want_fields):
     return Solved(rec, res.fields() if want_fields else None, c)
 
 
+def persson(load, speed, spectrum, ratio):
+    """Persson's theory (``analytic.persson``) on a self-affine spectrum (``hurst``,
+    ``rolloff``, ``short_cutoff``, ``rms_slope`` of a surface description): (μ, contact
+    fraction); RuntimeError when its quadrature did not meet its own bound."""
+    from analytic import persson as theory
+    kw = {k: spectrum[k] for k in ("hurst", "rolloff", "short_cutoff", "long_cutoff",
+                                   "rms_slope", "rms_height") if spectrum.get(k) is not None}
+    res = theory.solve(load=load, speed=speed, ratio=ratio, **kw)
+    if not res.success:
+        raise RuntimeError(f"Persson's theory at load={load}, speed={speed}: {res.message}")
+    return res.mu, res.contact_fraction
+
+
 # ------------------------------------------------------------------------------ operating points
 def point_controls(point):
     """``{"load": p̃∞}`` or ``{"penetration": Δ/h}`` of an operating point dict, as a float."""

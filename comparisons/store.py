@@ -9,7 +9,7 @@ Reading back, every file is validated before it is used (`Store.problem`): the J
 hold the spec it is filed under, and — for a converged run — a record that passes the last line
 of defence (`comparisons.gate`); the .npz must hold the four fields as finite 1-D arrays of one
 length (and, for a non-uniform grid, their cell widths ``width``, making one period:
-`viscosine.Fields`).  A truncated, empty or garbage file is treated as missing: ``has`` notes it
+`viscosine.Fields`), or for a surface the grid's x and y and the three fields on it.  A truncated, empty or garbage file is treated as missing: ``has`` notes it
 on standard error and the run is done again.
 """
 from __future__ import annotations
@@ -29,6 +29,8 @@ from ._errors import StoreError, one_line
 from ._io import temporary_name
 
 FIELD_NAMES = ("x_over_lambda", "pressure", "displacement", "gap")
+#: a surface's fields: the grid's centres and the fields on it (conventions.md, 'Surfaces')
+SURFACE_FIELDS = ("x", "y", "pressure", "displacement", "gap")
 
 
 def key(spec):
@@ -80,7 +82,8 @@ class Store:
             except Exception as exc:  # any unreadable archive (truncated zip, garbage, missing)
                 raise StoreError(f"{os.path.basename(npz)} is unreadable ({type(exc).__name__}: "
                                  f"{one_line(exc)})") from None
-            why = _check_fields(doc["fields"])
+            why = (_check_surface_fields(doc["fields"]) if spec.get("surface") is not None
+                   else _check_fields(doc["fields"]))
             if why:
                 raise StoreError(f"{os.path.basename(npz)}: {why}")
         return doc
@@ -114,7 +117,12 @@ class Store:
     def put(self, spec, out, fields=False):
         """Store one `runner.run` result (its fields too, when asked for and present)."""
         k = key(spec)
-        if fields and out.get("fields") is not None:
+        if fields and out.get("fields") is not None and spec.get("surface") is not None:
+            f = out["fields"]  # a surface's: the grid and 2-D fields (conventions.md)
+            self._atomic(self._path(k, "npz"), lambda fh: np.savez(
+                fh, **{n: np.asarray(getattr(f, n), dtype=float) for n in SURFACE_FIELDS}),
+                "wb")
+        elif fields and out.get("fields") is not None:
             f = out["fields"]
             data = f.as_dict() if hasattr(f, "as_dict") else f
             names = FIELD_NAMES + ((WIDTH,) if data.get(WIDTH) is not None else ())
@@ -146,7 +154,9 @@ def _check_doc(doc, spec):
     if not isinstance(doc["ok"], bool):
         return "ok is not true/false"
     if doc["ok"]:
-        why = gate.check_record(doc["record"], spec)
+        check = gate.check_surface_record if spec.get("surface") is not None else \
+            gate.check_record
+        why = check(doc["record"], spec)
         if why:
             return why
     elif not isinstance(doc["error"], str):
@@ -167,4 +177,19 @@ def _check_fields(fields):
             Fields.from_columns(fields)
         except ValueError as exc:
             return f"the cells of the fields do not make one period ({exc})"
+    return None
+
+
+def _check_surface_fields(fields):
+    if set(fields) != set(SURFACE_FIELDS):
+        return f"fields {sorted(fields)} instead of {list(SURFACE_FIELDS)}"
+    x, y = fields["x"], fields["y"]
+    shape = (x.size, y.size)
+    if x.ndim != 1 or y.ndim != 1 or x.size == 0 or y.size == 0:
+        return "the grid's x and y are not 1-D arrays"
+    if any(fields[n].shape != shape for n in ("pressure", "displacement", "gap")):
+        return f"fields are not arrays of the grid's shape {shape}"
+    if not all(np.issubdtype(a.dtype, np.floating) and np.all(np.isfinite(a))
+               for a in fields.values()):
+        return "fields are not finite floats"
     return None

@@ -29,14 +29,16 @@ def test_quick_report_writes_every_part(quick_report):
     md = (out / "report.md").read_text()
     figures = (["material", "fig03a", "fig03b"] + [f"fig{n:02d}" for n in range(4, 13)]
                + ["fields", "convergence", "layers_mu", "layers_contact", "layers_full_contact"]
+               + ["surface_pressure", "surface_mu", "surface_direction", "surface_persson"]
                + (["tamaas_dt"] if report.tamaas_installed() else []))
     for fig in figures:
         assert (out / f"{fig}.png").stat().st_size > 10_000
         assert f"({fig}.png)" in md
     for section in ["The material", "Fields: σ(x) and v(x)", "Scalars from both roads",
                     "Agreement of the two roads", "Convergence of the BEM",
-                    "A layer of finite thickness", "A third code: Tamaas", "Provenance"]:
-        assert f"## {section}" in md
+                    "A layer of finite thickness", "Surfaces: a rigid periodic surface",
+                    "A third code: Tamaas", "Provenance"]:
+        assert f"## {section}" in md, section
     assert "numba" in md and "date (UTC)" in md
     assert re.search(r"^\| time: layer section: runs \(sum over processes\) \| [\d.]+ s \|$",
                      md, re.M)
