@@ -345,3 +345,21 @@ def test_bad_surfaces_are_refused(tmp_path):
     z = bem.bisinusoid(1.0).sample(16, 16)
     np.savetxt(p, z)
     assert np.max(np.abs(bem.read_surface(p).sample(16, 16) - z)) < 1e-12
+
+
+def test_the_readme_surface_example_prints_what_it_says():
+    """The README's surface example, run as written, prints the line it promises (its digits
+    come from the code, not from a past run)."""
+    import re
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S)
+                 if "solve_surface" in b)
+    code, promised = block.split("# ", 1)
+    namespace = {"bem": bem}
+    import contextlib
+    import io
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(code, namespace)
+    assert out.getvalue().strip() == promised.strip()

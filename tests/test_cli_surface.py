@@ -105,3 +105,22 @@ def test_bad_files_and_grids_are_refused(capsys, tmp_path):
                                               "--rolloff", "4", "--short-cutoff", "20",
                                               "--rms-slope", "0.1", "--nodes", "16"])
     assert rc == 2 and out == "" and "--nodes 16 is not allowed" in err, err
+
+
+def test_the_readme_surface_command_prints_what_it_says(capsys, tmp_path):
+    """The README's surface command, run as written (its --fields into a temporary folder),
+    prints the values the README quotes."""
+    import re
+    import shlex
+    from pathlib import Path
+    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    line = next(ln for ln in text.splitlines()
+                if ln.startswith("python -m comparisons point") and "--surface" in ln)
+    promised = text.split(line, 1)[1].splitlines()[1]
+    argv = shlex.split(line)[3:]
+    argv[argv.index("--fields") + 1] = str(tmp_path / "p.npz")
+    rc, out, err = _run(capsys, argv)
+    assert rc == 0, err
+    rec = json.loads(out)
+    for key, value in re.findall(r'"(\w+)": ([-\d.e]+)', promised):
+        assert repr(rec[key]) == value, key
