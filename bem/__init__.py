@@ -39,7 +39,7 @@ from viscosine.checks import positive_int as _positive_int
 from viscosine.checks import real as _real
 
 from ._accepted import ACCEPTED, MAX_NODES, validate
-from ._front import solve_si, sweep
+from ._front import SurfaceSIResult, solve_si, solve_surface_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
 from ._layer import Layer
@@ -76,8 +76,9 @@ def influence_coefficients(material, speed, nodes):
     return _coefficients(material.j_plus, material.terms, speed, nodes)
 
 
-__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES", "MESSAGES", "Patch",
-           "Prony", "SampledProfile", "Sinusoid", "Surface", "SurfaceFields", "SurfacePatch",
-           "SurfaceResult", "bisinusoid", "influence_coefficients", "max_surface_panels",
-           "read_profile", "read_prony", "read_surface", "sampled_surface", "self_affine",
-           "solve", "solve_si", "solve_surface", "sweep", "validate", "validate_surface"]
+__all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES", "MESSAGES",
+           "Patch", "Prony", "SampledProfile", "Sinusoid", "Surface", "SurfaceFields",
+           "SurfacePatch", "SurfaceResult", "SurfaceSIResult", "bisinusoid",
+           "influence_coefficients", "max_surface_panels", "read_profile", "read_prony",
+           "read_surface", "sampled_surface", "self_affine", "solve", "solve_si", "solve_surface",
+           "solve_surface_si", "sweep", "validate", "validate_surface"]

@@ -1,18 +1,21 @@
-"""The BEM road's fronts: sweeps as tables and the SI front, thin loops and scalings around
-`bem.solve` through the shared `viscosine.table` and `viscosine.si` (nothing here solves).
+"""The BEM road's fronts: sweeps as tables and the SI fronts, thin loops and scalings around
+`bem.solve` and `bem.solve_surface` through the shared `viscosine.table` and `viscosine.si`
+(nothing here solves).
 """
 from __future__ import annotations
 
 import math
 import warnings
+from dataclasses import dataclass
 
 from viscosine import si, table
 from viscosine.checks import real, reals
 
-from . import _solver
+from . import _solver, _surface_solver
 from ._accepted import ACCEPTED, validate
 from ._inputs import Prony, SampledProfile
 from ._layer import Layer
+from ._surface import sampled_surface
 
 def sweep(*, load=None, penetration=None, speed, errors=False, **options):
     """Solve every (load or penetration, speed) pair: loads outer, speeds inner.
@@ -200,3 +203,139 @@ def _si_material(material, sls, problem):
     model = material.in_pascals()
     sc = si.material_scales(E_ref=model.E_r, tau_ref=1.0, **problem)
     return model, sc, Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0))
+
+
+def solve_surface_si(*, nu, length, speed, heights=None, surface=None, aspect=None,
+                     material=None, E0=None, Einf=None, tau=None, tau_creep=None,
+                     tau_relax=None, mean_pressure=None, penetration=None, direction=0.0,
+                     thickness=None, foundation=None, **options):
+    """Solve a rigid periodic surface's sliding contact from SI data (`bem.solve_surface`).
+
+    Parameters
+    ----------
+    nu : float
+        Poisson's ratio, −1 < ν ≤ 0.5.
+    length : float
+        Lx [m], the cell's side along x (k = 2π/Lx).
+    speed : float
+        V ≥ 0 [m/s].
+    heights : array_like, optional
+        The surface's heights z [m] on an (nx, ny) grid of one cell (rows along x; centres
+        ``x_i = (i/nx − 1/2) Lx``, ``y_j = (j/ny − 1/2) Ly``), positive toward the body.
+    surface : bem.Surface, optional
+        Instead of ``heights``: a surface in the conventions' units (heights k z).
+    aspect : float, optional
+        Ly/Lx of ``heights`` (default ny/nx: square panels).
+    material, E0, Einf, tau_creep, tau_relax, tau
+        As `bem.solve_si`: a `viscosine.materials.Maxwell` series, or the standard linear solid.
+    mean_pressure, penetration : float
+        Exactly one: p∞ [Pa] over the cell, or Δ [m], 0 < Δ ≤ h_ref.
+    direction : float
+        θ in degrees from +x.
+    thickness, foundation
+        A layer of thickness d [m] on a rigid foundation (as `bem.solve_si`).
+    **options
+        Options of `bem.solve_surface` (nodes, rtol, max_nodes, tol, …).
+
+    Returns
+    -------
+    SurfaceSIResult
+        The SI scalars beside the dimensionless ``solution`` (a `bem.SurfaceResult`).
+
+    Raises
+    ------
+    ValueError
+        An SI input that is invalid, named by its SI parameter.
+    """
+    for name in ("load", "ratio", "hk", "layer"):
+        if name in options:
+            raise ValueError(f"{name}={options[name]!r} is not allowed: solve_surface_si takes "
+                             "the problem in SI")
+    lx = real("length", length, "a finite cell side Lx > 0", lambda v: v > 0.0, unit="m")
+    k = 2.0 * math.pi / lx
+    if (heights is None) == (surface is None):
+        raise ValueError(f"heights={heights!r} is not allowed: give exactly one of heights= [m] "
+                         "and surface= (k z)")
+    if heights is not None:
+        z = reals("heights", heights, "a 2-D array of heights", unit="m")
+        if z.ndim != 2:
+            raise ValueError(f"heights=an array of shape {z.shape} is not allowed: a 2-D grid "
+                             "of heights (rows along x, columns along y) [m]")
+        surface = sampled_surface(z * k, z.shape[1] / z.shape[0] if aspect is None else aspect)
+    amplitude = surface.amplitude / k
+    model, sc, prony = _si_material(
+        material, {"E0": E0, "Einf": Einf, "tau": tau, "tau_creep": tau_creep,
+                   "tau_relax": tau_relax},
+        {"nu": nu, "wavelength": lx, "amplitude": amplitude, "speed": speed,
+         "mean_pressure": mean_pressure, "penetration": penetration})
+    layer = _si_layer(thickness, foundation, nu, lx)
+    control = {"load": sc.load} if sc.load is not None else {"penetration": sc.penetration}
+    sol = _surface_solver.solve_surface(**control, speed=sc.speed, surface=surface,
+                                        material=prony, direction=direction, layer=layer,
+                                        **options)
+    return SurfaceSIResult.of(sol, sc, lx)
+
+
+@dataclass(frozen=True)
+class SurfaceSIResult:
+    """A surface solve in SI: lengths in m, stresses in Pa, speeds in m/s.
+
+    Attributes
+    ----------
+    success, message : bool, str
+        The dimensionless solution's.
+    solution : bem.SurfaceResult
+        The dimensionless answer (its ``error_estimate`` applies to the SI scalars alike).
+    mu, mu_lateral, contact_fraction, n_patches : float, float, float, int
+        Dimensionless already.
+    mean_pressure, friction_stress, max_pressure : float
+        p∞, τf = μ p∞ and the peak pressure [Pa].
+    penetration, separation, length, amplitude : float
+        Δ, s, Lx and h_ref [m].
+    speed : float
+        V [m/s].
+    scales : dict
+        The SI scales (E0/(1 − ν²) [Pa], k [1/m], τ_ref [s]) and the groups they gave.
+    """
+
+    success: bool
+    message: str
+    solution: object
+    mu: float
+    mu_lateral: float
+    contact_fraction: float
+    n_patches: int
+    mean_pressure: float
+    friction_stress: float
+    max_pressure: float
+    penetration: float
+    separation: float
+    length: float
+    amplitude: float
+    speed: float
+    scales: dict
+
+    @classmethod
+    def of(cls, sol, sc, length):
+        e, h, k = sc.estar, sc.amplitude, sc.k
+        return cls(success=sol.success, message=sol.message, solution=sol, mu=sol.mu,
+                   mu_lateral=sol.mu_lateral, contact_fraction=sol.contact_fraction,
+                   n_patches=sol.n_patches, mean_pressure=sol.load * e,
+                   friction_stress=sol.tau_f * e, max_pressure=sol.max_pressure * e,
+                   penetration=sol.penetration * h, separation=sol.separation * h,
+                   length=length, amplitude=h, speed=sc.speed / (sc.tau * k),
+                   scales={"plane_strain_modulus": e, "k": k, "tau_ref": sc.tau,
+                           "load": sol.load, "speed_group": sc.speed, "ratio": sc.ratio})
+
+    def scalars(self) -> dict:
+        """The SI scalars (units in the keys' docstring: m, Pa, m/s)."""
+        return {k: getattr(self, k) for k in (
+            "mu", "mu_lateral", "contact_fraction", "n_patches", "mean_pressure",
+            "friction_stress", "max_pressure", "penetration", "separation")}
+
+    def as_dict(self) -> dict:
+        """The dimensionless record with an ``si`` block (m, Pa, m/s)."""
+        rec = self.solution.as_dict()
+        rec["si"] = dict(self.scalars(), length=self.length, amplitude=self.amplitude,
+                         speed=self.speed, units="m, Pa, m/s", **self.scales)
+        return rec

@@ -201,10 +201,11 @@ def surface(description, parsed=None):
     return parsed if parsed is not None else bem.read_surface(description["path"])
 
 
-def read_surface(path):
-    """A file of heights k z on a grid, read by the BEM's own reader (``bem.read_surface``)."""
+def read_surface(path, units="conventions", length=None):
+    """A file of heights on a grid, read by the BEM's own reader (``bem.read_surface``): k z,
+    or metres (``units="SI"``) over the cell's side ``length`` Lx [m]."""
     import bem
-    return bem.read_surface(path)
+    return bem.read_surface(path, units=units, length=length)
 
 
 def _surface_kwargs(spec, material, parsed):
@@ -367,3 +368,73 @@ def source_hash() -> str:
             h.update(f.name.encode())
             h.update(f.read_bytes())
     return h.hexdigest()
+
+
+# ------------------------------------------------------------------------------ surface cases
+def _surface_point_kwargs(point):
+    """The keywords a surface operating point dict (``surface``: a plain description,
+    ``direction``, ``load`` or ``penetration``, ``speed``, ``ratio``; ``layer`` optional) gives
+    both surface solvers, as floats."""
+    return dict(point_controls(point), speed=float(point["speed"]),
+                direction=float(point.get("direction", 0.0)))
+
+
+def surface_solution(point, nodes):
+    """The surface BEM (``bem.solve_surface``) at a surface operating point dict on a fixed grid
+    of ``nodes`` panels along x (its halvings solved too: its own estimate), Krylov tolerance
+    `BEM_TOL`; the point's ``layer`` (a plain description, see `layer`), if any, under it."""
+    import bem
+    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
+    return bem.solve_surface(**_surface_point_kwargs(point), surface=surface(point["surface"]),
+                             ratio=float(point.get("ratio", 3.0)), nodes=int(nodes), tol=BEM_TOL,
+                             **kw)
+
+
+def surface_harmonics(description):
+    """The surface of a plain description as harmonics ``{(m, n): c}``, k z = Σ Re[c e^{2πi(m x +
+    n y/aspect)}] (the surface reference's form), and its aspect: the BEM's band-limited surface
+    (its seeded synthesis for a self-affine one) handed over as numbers."""
+    s = surface(description)
+    # the BEM keeps one mode of each conjugate pair, heights Σ Re(2 c e^{...})
+    return {(int(m), int(n)): 2.0 * complex(c) for (m, n), c in zip(s.modes, s.coefficients)}, \
+        float(s.aspect)
+
+
+def surface_reference_solution(point, nodes):
+    """The independent surface reference (``analytic.surface_reference.solve``: Douglas–Rachford
+    splitting, its own measurements and Richardson estimate) at a surface operating point dict
+    on the grids ``nodes`` (panels along x).  It has no layer: ValueError for a point with
+    one."""
+    from analytic import surface_reference
+    if point.get("layer") is not None:
+        raise ValueError("layer is not allowed: the surface reference solves the half-space only")
+    heights, aspect = surface_harmonics(point["surface"])
+    return surface_reference.solve(**_surface_point_kwargs(point), heights=heights,
+                                   aspect=aspect, ratio=float(point.get("ratio", 3.0)),
+                                   nodes=tuple(int(n) for n in nodes))
+
+
+def bisinusoid_full_contact(speed, direction, ratio, hk, hk_y):
+    """Full contact of the bi-sinusoid k z = hk cos kx + hk_y cos ky (square cell) on the
+    standard linear solid ``ratio``, from the line's Appendix B (``analytic.fourier
+    .full_contact``): each family of ridges is the line's sinusoid sliding at the speed
+    component across it, w cos θ and w sin θ (``docs/surfaces.md`` §2.2, §2.3).
+
+    Returns ``{"tau_f", "lateral", "load_threshold"}``: the friction stress along V and the
+    lateral force per unit area (both independent of the load in full contact) and p̃_FC, the
+    sum of the two families' thresholds."""
+    from analytic.fourier import full_contact
+    th = math.radians(float(direction))
+    c, s = math.cos(th), math.sin(th)
+    tau, lat, fc = 0.0, 0.0, 0.0
+    # the ridges along y (mode (1, 0)) pull along −x, those along x (mode (0, 1)) along −y, each
+    # with the line's friction at its signed speed; projected on ê and ê⊥ = (−sin θ, cos θ)
+    for amp, comp, along, across in ((hk, c, c, -s), (hk_y, s, s, c)):
+        if amp <= 0.0:
+            continue
+        fam = full_contact(abs(float(speed) * comp), hk=float(amp), ratio=float(ratio))
+        t = math.copysign(float(fam["tau_f"]), comp) if comp != 0.0 else 0.0
+        tau += along * t
+        lat -= across * t
+        fc += float(fam["load_threshold"])
+    return {"tau_f": tau, "lateral": lat, "load_threshold": fc}

@@ -313,6 +313,20 @@ def si_block(rec, info):
     return out
 
 
+def surface_si_block(rec, info):
+    """A surface record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``
+    (``wavelength`` is the cell's side Lx; h_ref is the record's surface amplitude k h_ref over
+    k: for the bi-sinusoid twice the --amplitude h)."""
+    lx, estar = info["wavelength"], info["plane_strain_modulus"]
+    k = 2.0 * math.pi / lx
+    h = rec["surface"]["amplitude"] / k
+    return {"mean_pressure": rec["load"] * estar, "friction_stress": rec["tau_f"] * estar,
+            "max_pressure": rec["max_pressure"] * estar,
+            "penetration": rec["penetration"] * h, "separation": rec["separation"] * h,
+            "speed": rec["speed"] / (info["tau_ref"] * k), "length": lx, "amplitude": h,
+            "plane_strain_modulus": estar, "units": "m, Pa, m/s"}
+
+
 #: the option behind each key of ``material_options``
 _MATERIAL_OPTIONS = {"temperature": "--temperature", "wlf": "--wlf",
                      "shift_table": "--shift-table", "max_residual": "--max-residual",
@@ -339,7 +353,7 @@ def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_res
 
 
 # ------------------------------------------------------------------------------ input files
-def read_input(option, path):
+def read_input(option, path, **reader_options):
     """Read a --profile, --prony or --surface file: ``({"path", "sha256"}, parsed object)``.
 
     The file must be a regular UTF-8 text file; the parsing is the BEM's own
@@ -355,10 +369,11 @@ def read_input(option, path):
     reader = {"profile": roads.read_profile, "prony": roads.read_prony,
               "surface": roads.read_surface}[option]
     try:
-        obj = reader(path)
+        obj = reader(path, **reader_options)
     except (ValueError, UnicodeDecodeError, OSError) as exc:
         raise BadInput(f"{where}: {_one_line(exc)}") from None
     info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
+    info.update(reader_options)  # a surface file in metres: its units and Lx
     return info, obj
 
 
@@ -417,7 +432,11 @@ def _surface(spec):
     if spec["surface"].get("kind") != "file":
         return None
     obj = spec.get("_surface")
-    return obj if obj is not None else read_input("surface", spec["surface"]["path"])[1]
+    if obj is not None:
+        return obj
+    desc = spec["surface"]
+    extra = {k: desc[k] for k in ("units", "length") if desc.get(k) is not None}
+    return read_input("surface", desc["path"], **extra)[1]
 
 
 def _material(spec):
@@ -499,7 +518,8 @@ def run(spec, fields=False, deep=None):
         if spec.get("si") is not None:
             rec["si_scales"] = spec["si"]
             if rec.get("success"):
-                rec["si"] = si_block(rec, spec["si"])
+                rec["si"] = (surface_si_block(rec, spec["si"]) if spec.get("surface")
+                             is not None else si_block(rec, spec["si"]))
         if spec.get("material") is not None and rec.get("success"):
             from . import _materials
             text = _materials.extrapolation(_material(spec).model, spec["speed"],

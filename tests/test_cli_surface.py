@@ -124,3 +124,35 @@ def test_the_readme_surface_command_prints_what_it_says(capsys, tmp_path):
     rec = json.loads(out)
     for key, value in re.findall(r'"(\w+)": ([-\d.e]+)', promised):
         assert repr(rec[key]) == value, key
+
+
+def test_si_surfaces_answer_what_the_groups_answer(capsys, tmp_path):
+    """--units SI with a surface FILE in metres (--wavelength is the cell's side Lx) and with
+    the bi-sinusoid of --amplitude h [m] answer what the conventions' groups answer, and carry
+    the SI block; bem.solve_surface_si likewise."""
+    import math
+    lx, nu, e0 = 0.01, 0.5, 5e6
+    k, estar = 2 * math.pi / lx, e0 / (1 - nu ** 2)
+    surf = bem.bisinusoid(0.1)
+    path = tmp_path / "metres.txt"
+    np.savetxt(path, surf.sample(32, 32) / k)
+    si = ["--units", "SI", "--wavelength", str(lx), "--nu", str(nu), "--E0", str(e0),
+          "--Einf", str(3 * e0), "--tau-creep", "1e-3", "--load", repr(0.03 * estar),
+          "--speed", repr(1.0 / (1e-3 * k)), "--nodes", "64"]
+    ref = bem.solve_surface(load=0.03, speed=1.0, surface=surf, nodes=64)
+    for extra in (["--surface", str(path)], ["--surface", "bisinusoid", "--amplitude",
+                                            repr(0.1 / k)]):
+        rc, out, err = _run(capsys, ["point", "--solver", "bem"] + si + extra)
+        assert rc == 0, err
+        rec = json.loads(out)
+        assert rec["mu"] == pytest.approx(ref.mu, rel=1e-10)
+        assert rec["si"]["mean_pressure"] == pytest.approx(0.03 * estar, rel=1e-12)
+        assert rec["si"]["penetration"] == pytest.approx(ref.penetration * 0.2 / k, rel=1e-9)
+    r = bem.solve_surface_si(nu=nu, length=lx, speed=1.0 / (1e-3 * k), heights=surf.sample(
+        32, 32) / k, E0=e0, Einf=3 * e0, tau_creep=1e-3, mean_pressure=0.03 * estar, nodes=64)
+    assert r.success and r.mu == pytest.approx(ref.mu, rel=1e-10)
+    assert r.friction_stress == pytest.approx(ref.tau_f * estar, rel=1e-10)
+    for extra, says in ((["--surface", str(path), "--amplitude", "1e-4"], "--amplitude"),
+                        (["--surface", "self-affine"], "--surface self-affine is not allowed")):
+        rc, out, err = _run(capsys, ["point", "--solver", "bem"] + si + extra)
+        assert rc == 2 and out == "" and says in err, err

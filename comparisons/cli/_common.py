@@ -191,8 +191,10 @@ def solver_options(p, several):
                                "(instead of --tau-creep)"),
                               (("--nu",), "-", "Poisson's ratio (also, with --thickness, "
                                "the layer's: its factor S(kd, ν))"),
-                              (("--wavelength",), "m", "λ of the sinusoid"),
-                              (("--amplitude",), "m", "h of the sinusoid")):
+                              (("--wavelength",), "m", "λ of the sinusoid (with --surface: "
+                               "the cell's side Lx)"),
+                              (("--amplitude",), "m", "h of the sinusoid (with --surface "
+                               "bisinusoid: h of each sinusoid; a FILE fixes its own)")):
         p.add_argument(*names, type=number, action=Once, metavar="X",
                        help=f"--units SI: {what} [{unit}]")
 
@@ -249,9 +251,6 @@ def surface_description(args):
     if args.profile is not None:
         raise BadInput("--profile is not allowed with --surface: the surface replaces the "
                        "profile")
-    if args.units == "SI":
-        raise BadInput("--units SI is not allowed with --surface yet: give the dimensionless "
-                       "groups (lengths over Lx, heights k z, speed V τ k with k = 2π/Lx)")
     kind = args.surface
     desc = {"aspect": given["aspect"]}
     if kind == "bisinusoid":
@@ -391,6 +390,9 @@ def units_si(args, files):
             raise BadInput(f"--{option} is not allowed with --units SI: the SI problem is the "
                            "sinusoid of --amplitude, --wavelength on --E0 --Einf --tau-creep or "
                            "a --material file")
+    if args.surface is not None:
+        _surface_si(args, files)
+        given["amplitude"] = args.amplitude  # a FILE's h_ref [m]
     material = None
     if args.material is not None:
         if args.solver != "bem":
@@ -410,7 +412,34 @@ def units_si(args, files):
         if out[key] is not None:
             setattr(args, key, out[key] if several else out[key][0])
     args.ratio, args.hk = out["ratio"], out["hk"]
+    if args.surface is not None and args.surface not in ("bisinusoid", "self-affine"):
+        args.hk = None  # the file's heights fix the surface (read in metres above)
     return out["si"]
+
+
+def _surface_si(args, files):
+    """--units SI with --surface: --wavelength is the cell's side Lx [m]; a FILE holds heights
+    in metres (read here, its h_ref becomes the amplitude), the bi-sinusoid's --amplitude is h
+    [m] of each sinusoid; a self-affine surface is given in the conventions' units only."""
+    if args.surface == "self-affine":
+        raise BadInput("--surface self-affine is not allowed with --units SI: its spectrum is "
+                       "given in the conventions' units (wavenumbers over k = 2π/Lx); give its "
+                       "heights as a FILE in metres instead")
+    if args.hk_y is not None:
+        raise BadInput("--hk-y is not allowed with --units SI: the SI bi-sinusoid has "
+                       "--amplitude h [m] along both axes (a FILE in metres for others)")
+    if args.surface == "bisinusoid":
+        return
+    if args.amplitude is not None:
+        raise BadInput(f"--amplitude {args.amplitude!r} is not allowed with --surface FILE: the "
+                       "file's heights fix h_ref (max z − mean z)")
+    if args.wavelength is None:
+        raise BadInput("--wavelength is missing: with --units SI and --surface FILE it is the "
+                       "cell's side Lx [m] (the file's heights are in metres)")
+    info, surface = runner.read_input("surface", args.surface, units="SI",
+                                      length=args.wavelength)
+    files["surface"] = (info, surface)
+    args.amplitude = surface.amplitude / (2.0 * math.pi / args.wavelength)
 
 
 def material_options(args):
