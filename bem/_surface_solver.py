@@ -45,6 +45,9 @@ SURFACE_START = 32
 SURFACE_BYTES_PER_PANEL = 150
 #: gaps (over h_ref) and pressures (over the maximum) the validity gate counts as zero
 ROUNDOFF = 1e-12
+#: contact panels below which a grid's answer is no answer (a contact inside a panel or two
+#: has no shape: its area, friction and penetration are the grid's, not the surface's)
+MIN_CONTACT_PANELS = 16
 
 
 def _memory() -> int:
@@ -375,6 +378,12 @@ def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
     warnings = []
     if ok_grid:
         problems = _gate(sc, resid, load)
+        panels = int(np.count_nonzero(active))
+        if not sc["full_contact"] and panels < MIN_CONTACT_PANELS:
+            problems.append(f"the grid is too coarse for the contact: it holds {panels} contact "
+                            f"panel{'s' if panels != 1 else ''} of {nx} x {ny} (at least "
+                            f"{MIN_CONTACT_PANELS} are needed; refine the grid, or leave it "
+                            "adaptive)")
         if problems:
             status = STATUS_INVALID
             message = f"{MESSAGES[STATUS_INVALID]}: " + "; ".join(problems)

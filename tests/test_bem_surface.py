@@ -363,3 +363,11 @@ def test_the_readme_surface_example_prints_what_it_says():
     with contextlib.redirect_stdout(out):
         exec(code, namespace)
     assert out.getvalue().strip() == promised.strip()
+
+
+def test_a_grid_too_coarse_for_the_contact_gives_no_answer():
+    """A light load on a coarse fixed grid: the contact is a panel or two, whose area and
+    friction are the grid's: not a success, and the message says why and what to do."""
+    r = bem.solve_surface(load=1e-4, speed=1.0, nodes=32)
+    assert not r.success and "too coarse for the contact" in r.message
+    assert "32 x 32" in r.message
