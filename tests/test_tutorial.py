@@ -28,7 +28,7 @@ def blocks():
 def test_every_bem_call_pins_its_mesh():
     code = blocks()
     assert {lang for lang, _ in code} == {"python", "sh"}
-    calls = [c for _, c in code if "bem.solve(" in c]
+    calls = [c for _, c in code if "bem.solve(" in c or "bem.solve_surface(" in c]
     assert calls and all("nodes=" in c for c in calls)
     lines = [ln for _, c in code for ln in c.splitlines() if "--solver bem" in ln]
     assert lines and all("--nodes" in ln for ln in lines)
@@ -60,6 +60,8 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
                 assert "Traceback" not in proc.stderr
     finally:
         plt.close("all")
+    assert (tmp_path / "surface.npz").stat().st_size > 100_000  # 128 x 128 fields
+    assert json.loads((tmp_path / "surface.json").read_text())["direction"] == 30.0
     for name in ("friction.png", "friction_cli.png"):
         assert (tmp_path / name).stat().st_size > 10_000, name
     for name, n in (("sls.jsonl", 21), ("sls_bem.jsonl", 21), ("prony3.jsonl", 19)):
@@ -70,8 +72,9 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
     promised += [ln.strip() for ln in text.splitlines() if ln.startswith("    V/V0 = ")]
     promised += [ln[4:] for ln in text.splitlines()  # the layer's two tables (10 and 9 lines)
                  if ln.startswith(("    bonded ", "    frictionless ", "    half-space "))]
+    promised += [ln[4:] for ln in text.splitlines() if ln.startswith("    θ = ")]  # a surface
     out = printed.getvalue().splitlines()
-    assert len(promised) == 26 and all(p in out for p in promised), (promised, out)
+    assert len(promised) == 30 and all(p in out for p in promised), (promised, out)
     sls = [json.loads(ln) for ln in (tmp_path / "sls.jsonl").read_text().splitlines()]
     assert f'"mu": {sls[0]["mu"]!r}' in text and sls[0]["speed"] == 0.01
     # what the text says: the BEM's circles sit on the semi-analytic curve
