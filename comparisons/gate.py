@@ -77,14 +77,7 @@ def check_record(rec, spec, constraints=None, fields=None):
         return f"invalid result: penetration Δ/h = {rec['penetration']!r} outside (0, 1]"
     if rec["ka"] is not None and not 0.0 < rec["ka"] <= math.pi * one:
         return f"invalid result: ka = {rec['ka']!r} outside (0, π]"
-    if not 0.0 < rec["contact_fraction"] <= one:
-        return f"invalid result: contact_fraction = {rec['contact_fraction']!r} outside (0, 1]"
-    for k in ("mu", "tau_f"):
-        if rec[k] < -RANGE_ROUNDOFF:
-            return f"invalid result: {k} = {rec[k]!r} < 0 (friction must resist the motion)"
-    if not rec["load"] > 0.0:
-        return f"invalid result: load = {rec['load']!r} ≤ 0"
-    problem = _controls_and_constraints(rec, spec, constraints)
+    problem = _physical(rec) or _controls_and_constraints(rec, spec, constraints)
     if problem:
         return problem
     if fields is not None:
@@ -113,17 +106,21 @@ def check_surface_record(rec, spec, constraints=None):
     bad = _nonfinite(rec)
     if bad:
         return f"invalid result: {bad} is not a finite number"
-    one = 1.0 + RANGE_ROUNDOFF
-    if not 0.0 < rec["penetration"] <= one:
+    if not 0.0 < rec["penetration"] <= 1.0 + RANGE_ROUNDOFF:
         return f"invalid result: penetration Δ/h_ref = {rec['penetration']!r} outside (0, 1]"
-    if not 0.0 < rec["contact_fraction"] <= one:
+    return _physical(rec) or _controls_and_constraints(rec, spec, constraints)
+
+
+def _physical(rec):
+    """A contact fraction in (0, 1], a friction that resists and a positive load (or None)."""
+    if not 0.0 < rec["contact_fraction"] <= 1.0 + RANGE_ROUNDOFF:
         return f"invalid result: contact_fraction = {rec['contact_fraction']!r} outside (0, 1]"
     for k in ("mu", "tau_f"):
         if rec[k] < -RANGE_ROUNDOFF:
             return f"invalid result: {k} = {rec[k]!r} < 0 (friction must resist the motion)"
     if not rec["load"] > 0.0:
         return f"invalid result: load = {rec['load']!r} ≤ 0"
-    return _controls_and_constraints(rec, spec, constraints)
+    return None
 
 
 def _controls_and_constraints(rec, spec, constraints):
