@@ -23,12 +23,16 @@ from ._io import write_text
 from .fields import PATCH_KEYS
 from .plots.materials import prony_numbers
 from .plots.suite import material_png
-from .suite import FORM_NAMES, case_material, load_suite, reference_of, select, two_roads
+from .suite import (FORM_NAMES, SURFACE_REFERENCES, SURFACE_RULE, case_material, is_surface,
+                    load_suite, reference_of, select, surface_references, two_roads)
 from .suite_inputs import DATA
 
 #: the files an exported case folder writes itself (a copied material file never takes one)
 EXPORT_FILES = ("inputs.json", "prony.txt", "profile.csv", "scalars.json", "scalars.csv",
                 "fields.csv", "material.png")
+#: the files of an exported surface case's folder
+SURFACE_EXPORT_FILES = ("inputs.json", "prony.txt", "surface.csv", "scalars.json", "scalars.csv",
+                        "fields.npz")
 
 
 def _source_name(point) -> str:
@@ -180,12 +184,14 @@ def layer_inputs(case) -> dict:
 
 
 def layer_text(point) -> str:
-    """A case's layer in a few words (``--list``, README.md): ``half-plane`` without one."""
+    """A case's layer in a few words (``--list``, README.md): ``half-plane`` without one (a
+    surface case's: ``half-space``, its thickness over Lx)."""
+    surface = is_surface(point)
     if not point.get("layer"):
-        return "half-plane"
+        return "half-space" if surface else "half-plane"
     lay = _roads.layer(point["layer"])
-    return (f"layer d/λ = {lay.thickness_over_wavelength:g} (kd = {lay.thickness:.4g}), "
-            f"{lay.foundation}, ν = {lay.nu:g}")
+    return (f"layer d/{'Lx' if surface else 'λ'} = {lay.thickness_over_wavelength:g} "
+            f"(kd = {lay.thickness:.4g}), {lay.foundation}, ν = {lay.nu:g}")
 
 
 def _scalar_rows(cert):
@@ -213,6 +219,10 @@ def export(folder, names=(), suite=None):
     for case in cases:
         d = folder / case["name"]
         cert = case["certified"]
+        if is_surface(case):
+            _export_surface(d, case, suite)
+            written.append(d)
+            continue
         write_text(d / "inputs.json", json.dumps(_inputs(case, suite), indent=1,
                                                     ensure_ascii=False) + "\n")
         write_text(d / "prony.txt", _prony_text(case["point"]))
@@ -245,6 +255,90 @@ def export(folder, names=(), suite=None):
     write_text(folder / "index.json", json.dumps(index, indent=1, ensure_ascii=False) + "\n")
     write_text(folder / "README.md", _index_readme(suite, cases))
     return written
+
+
+def _surface_text(point) -> str:
+    """``surface.csv``: the surface's harmonics, exactly (every surface of the suite is
+    band-limited; a self-affine one is its seeded synthesis)."""
+    heights, aspect = _roads.surface_harmonics(point["surface"])
+    amp = float(_roads.surface(point["surface"]).amplitude)
+    desc = ", ".join(f"{k} = {v!r}" for k, v in point["surface"].items() if v is not None)
+    lines = [f"# surface: {desc}",
+             "# k z(x, y) = sum over the rows of Re[c exp(2 pi i (m x + n y/aspect))], c = re + "
+             "i im; x, y over Lx (the crest of the bi-sinusoid at the origin), k = 2 pi/Lx",
+             f"# aspect Ly/Lx = {aspect!r}; k h_ref = max k z - mean k z = {amp!r}",
+             "m,n,re,im"]
+    lines += [f"{m},{n},{c.real!r},{c.imag!r}" for (m, n), c in sorted(heights.items())]
+    return "\n".join(lines) + "\n"
+
+
+def _surface_inputs(case, suite) -> dict:
+    """A surface case's ``inputs.json``: the operating point, the surface, the material, the
+    layer, the units and the second opinions that certify it."""
+    p = case["point"]
+    d = {"name": case["name"], "title": case["title"], "suite_version": suite["version"],
+         "geometry": "surface", "control": "load" if p.get("load") is not None else "penetration"}
+    d.update(_roads.point_controls(p))
+    d["speed"] = float(p["speed"])
+    d["direction"] = float(p.get("direction", 0.0))
+    d["surface"] = dict({k: v for k, v in p["surface"].items() if v is not None},
+                        file="surface.csv",
+                        amplitude_k_h_ref=float(_roads.surface(p["surface"]).amplitude))
+    d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
+                     "file": "prony.txt"}
+    d["units"] = ("load = p (1 - nu^2)/E0, the mean pressure over the cell; speed = V tau k, "
+                  "k = 2 pi/Lx; direction theta in degrees from +x, counter-clockwise; "
+                  "positions over Lx, heights k z; penetration = Delta/h_ref, h_ref = max z - "
+                  "mean z; mu along V, mu_lateral the force the solid exerts on the surface "
+                  "along (-sin theta, cos theta) over the load; pressure sigma (1 - nu^2)/E0; "
+                  "displacement and gap over h_ref (E_ref = E0, tau_ref = tau: the creep time)")
+    if p.get("layer"):
+        lay = _roads.layer(p["layer"])
+        d["layer"] = {"thickness_over_Lx": float(lay.thickness_over_wavelength),
+                      "thickness_kd": float(lay.thickness), "foundation": lay.foundation,
+                      "nu": float(lay.nu), "uniform_compliance_C": float(lay.uniform),
+                      "definition": SURFACE_LAYER_DEFINITION}
+    refs = surface_references(case)
+    d["reference_road"] = ("; ".join(SURFACE_REFERENCES[r] for r in refs) if refs else
+                           "none independent: the surface BEM's convergence study alone")
+    return d
+
+
+#: what a surface case's layer is (its inputs.json)
+SURFACE_LAYER_DEFINITION = (
+    "a layer of thickness d in place of the half-space, its top face under the surface (the "
+    "contact pressure, no shear), its lower face on a rigid foundation, bonded or frictionless; "
+    "Poisson ratio nu constant in time. A pressure mode of wave vector q (|q| in k = 2 pi/Lx) "
+    "is the layer's plane-strain mode along q: its compliance is the half-space's times the "
+    "line's layer factor S(|q| k d, nu) (docs/layers.md and docs/surfaces.md §1.2 of "
+    "viscosine). The penetration and the displacement are measured from the mean plane of the "
+    "deformed surface, as on the half-space")
+
+
+def _export_surface(d, case, suite):
+    """One surface case's folder (SURFACE_EXPORT_FILES) from what ``suite.json`` certifies."""
+    cert = case["certified"]
+    write_text(d / "inputs.json", json.dumps(_surface_inputs(case, suite), indent=1,
+                                             ensure_ascii=False) + "\n")
+    write_text(d / "prony.txt", _prony_text(case["point"]))
+    write_text(d / "surface.csv", _surface_text(case["point"]))
+    sc = {"case": case["name"], "status": cert["status"], "notes": cert["notes"],
+          "method": cert["method"],
+          "scalars": {k: {kk: r[kk] for kk in ("value", "digits", "rounded", "error", "method")}
+                      for k, r in cert["scalars"].items()},
+          "exact": cert["exact"],
+          "fields": {"file": "fields.npz", "grid": cert["fields"]["grid"],
+                     "max_error": cert["fields"]["max_error"]}}
+    write_text(d / "scalars.json", json.dumps(sc, indent=1, ensure_ascii=False) + "\n")
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["quantity", "value", "certified_digits", "rounded", "error_bound", "method"])
+    for k, r in cert["scalars"].items():
+        w.writerow([k, repr(r["value"]), r["digits"], r["rounded"], r["error"], r["method"]])
+    for k, v in cert["exact"].items():
+        w.writerow([k, repr(v), "exact", repr(v), 0.0, "exact"])
+    write_text(d / "scalars.csv", buf.getvalue())
+    shutil.copyfile(DATA / cert["fields"]["file"], d / "fields.npz")
 
 
 def _material_png(path, case):
@@ -329,12 +423,30 @@ def _index_readme(suite, cases) -> str:
            "patch's summit).", "",
            *_layers_section(cases),
            "## How the digits are certified", "", suite["rule"], "",
+           *_surfaces_section(suite, cases),
            "## Cases", "",
            summary_table(cases),
            *_materials_list(cases),
            "Cite: Menga, Putignano, Carbone & Demelio, Proc. R. Soc. A 470, 20140392, 2014 (the "
            "problem and the semi-analytic method).", ""]
     return "\n".join(out)
+
+
+def _surfaces_section(suite, cases):
+    """README lines on the surface cases (none without one): their files and how they are
+    certified."""
+    if not any(is_surface(c) for c in cases):
+        return []
+    return ["## Surfaces", "",
+            "A case whose `inputs.json` says `\"geometry\": \"surface\"` is a rigid periodic "
+            "surface z(x, y) sliding at the speed V in the direction θ over the half-space (or a "
+            "layer): three-dimensional contact. Its folder holds `inputs.json`, `prony.txt`, "
+            "`surface.csv` (the surface's harmonics, exactly), `scalars.json`, `scalars.csv` "
+            "(mu, mu_lateral, penetration = Δ/h_ref, contact_fraction, and what is exact) and "
+            "`fields.npz` (the arrays `x`, `y`, `pressure`, `displacement`, `gap` of the "
+            "conventions, each with `<column>_err`, its certified absolute error, and the "
+            "scalars `load`, `speed`, `direction`; read it with `numpy.load`).", "",
+            suite.get("surface_rule", SURFACE_RULE), ""]
 
 
 def _layers_section(cases):
