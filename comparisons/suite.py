@@ -1093,9 +1093,11 @@ def _surface_scalar(key, nodes, values, own, exact, four):
         method = "bem convergence"
         if four is not None:
             gap = abs(value - four[0])
-            agree = bool(gap <= err + four[1]) if math.isfinite(gap) else False
+            # the digits both support; none where they disagree beyond their estimates (and
+            # no verdict without a study or a reference value: nothing to certify either way)
+            agree = bool(gap <= err + four[1]) if math.isfinite(gap) and math.isfinite(err) \
+                else None
             rec["agree"] = agree
-            # the digits both support; none where they disagree beyond their estimates
             err = max(err, four[1], gap) if agree else math.inf
             method = "bem convergence + surface reference"
     if four is not None:
