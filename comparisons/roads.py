@@ -438,3 +438,14 @@ def bisinusoid_full_contact(speed, direction, ratio, hk, hk_y):
         lat -= across * t
         fc += float(fam["load_threshold"])
     return {"tau_f": tau, "lateral": lat, "load_threshold": fc}
+
+
+def surface_on_grid(description, nx, ny):
+    """The surface of a plain description at the panel centres of an nx × ny grid (x_i = i/nx
+    − ½, y_j = (j/ny − ½) Ly/Lx): ``heights`` k z (mean 0), the exact ``slope_x``, ``slope_y``
+    (dz/dx, dz/dy), ``amplitude`` k h_ref and ``aspect``; ValueError naming ``nodes`` when
+    the grid cannot hold the surface's finest mode."""
+    s = surface(description)
+    gx, gy = s.gradient(nx, ny)
+    return {"heights": s.sample(nx, ny), "slope_x": gx, "slope_y": gy,
+            "amplitude": float(s.amplitude), "aspect": float(s.aspect)}

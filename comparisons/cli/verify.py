@@ -29,14 +29,15 @@ def _int_opt(name):
 
 def add_parser(sub):
     from ..verify import (ALL_KEYS, DEFAULT_DT_CELLS, DEFAULT_NODES, DEFAULT_PEER_NODES,
-                          DEFAULT_RTOL, GRID_FACTOR)
+                          DEFAULT_RTOL, GRID_FACTOR, SURFACE_DEFAULT_NODES, SURFACE_KEYS)
     p = sub.add_parser("verify", help="verify another code's results against viscosine's "
                                       "reference: verdict, report.md/.html, verdict.json",
                        description="Verify another code's results against viscosine's "
                                    "reference. The operating point is in the conventions' "
                                    "dimensionless units, or in SI with --units SI (then --load "
                                    "is p∞ in Pa, --penetration Δ in m, --speed V in m/s).")
-    p.add_argument("--case", default=None, help="a suite case (see `suite --list`)")
+    p.add_argument("--case", default=None, help="a suite case (see `suite --list`); a surface "
+                                                "case (surface-...) takes 2-D fields")
     g = p.add_mutually_exclusive_group()
     g.add_argument("--load", type=_float_opt("load"), default=None,
                    help="p̃∞ = p∞(1 − ν²)/E0; with --units SI the mean pressure p∞ in Pa")
@@ -50,7 +51,8 @@ def add_parser(sub):
     p.add_argument("--prony", default=None, help="Prony creep function file (bem.read_prony)")
     src = p.add_mutually_exclusive_group(required=True)
     src.add_argument("--fields", nargs="+", metavar="F.csv", default=None,
-                     help="fields CSV files (several: a convergence study)")
+                     help="fields CSV files (several: a convergence study); on a surface case "
+                          ".npz files of the conventions (x, y, pressure[, displacement, gap])")
     src.add_argument("--scalars", metavar="F.jsonl", default=None, help="JSON lines of scalars")
     src.add_argument("--callable", metavar="MODULE:FUNCTION", default=None,
                      help="function(point, nodes) returning fields")
@@ -59,7 +61,9 @@ def add_parser(sub):
                           "to dt → 0 (progress on standard error)")
     p.add_argument("--nodes", type=_int_opt("nodes"), nargs="+", default=None,
                    help="resolutions for --callable (default "
-                        f"{' '.join(map(str, DEFAULT_NODES))}) or --peer (default "
+                        f"{' '.join(map(str, DEFAULT_NODES))}; on a surface case panels per "
+                        f"side, default {' '.join(map(str, SURFACE_DEFAULT_NODES))}) or --peer "
+                        "(default "
                         f"{' '.join(map(str, DEFAULT_PEER_NODES))}: about a minute on two cores)")
     dt = p.add_mutually_exclusive_group()
     dt.add_argument("--dt-cells", type=_float_opt("dt-cells"), nargs="+", default=None,
@@ -76,7 +80,8 @@ def add_parser(sub):
                         f"{DEFAULT_RTOL:g} when N is not known); the field norms' tolerances "
                         "follow from the grid (the verdict states each, and why)")
     p.add_argument("--tol", action="append", default=[], metavar="NAME=VALUE",
-                   help=f"tolerance of one quantity: {', '.join(ALL_KEYS)}")
+                   help=f"tolerance of one quantity: {', '.join(ALL_KEYS)}; on a surface case "
+                        f"{', '.join(SURFACE_KEYS)}")
     p.add_argument("--units", choices=["conventions", "SI"], default="conventions",
                    help="SI: the fields files in Pa, m, m (with --E0 --nu --amplitude) and, "
                         "without --case, the operating point in SI: --load in Pa (or "

@@ -2,7 +2,7 @@
 
     python -m comparisons verify (--case NAME | (--load P | --penetration D) --speed S
                                   [--ratio R] [--hk H] [--profile F] [--prony F])
-                                 (--fields F.csv [F.csv ...] | --scalars F.jsonl |
+                                 (--fields F.csv|F.npz [...] | --scalars F.jsonl |
                                   --callable MODULE:FUNCTION [--nodes N ...] |
                                   --peer tamaas [--nodes N ...] [--dt-cells C ... | --dt T])
                                  [--rtol R] [--tol NAME=VALUE ...] [--units SI --E0 ... ]
@@ -22,7 +22,12 @@ One module per step, each documenting its part of the method (`docs/cli.md` for 
   why, the verdict with its floors, the slips the inputs look like, the convergence study;
 - ``_report``: report.md, report.html, verdict.json and the figures
   (`comparisons.plots.verify` draws them);
-- ``_api``: `assert_agrees`; ``_command``: the command (`run`).
+- ``_api``: `assert_agrees`; ``_command``: the command (`run`);
+- on a surface case of the suite (a rigid periodic surface, 2-D fields): ``_surface_fields``
+  (the ``.npz`` of the conventions, a callable's output, the scalars derived from them),
+  ``_surface_reference`` (the case's certified values and fields, what is compared, the
+  tolerances from the surface BEM's error on the same grid), ``_surface_judge`` (the verdict,
+  the convergence study, the slips) and ``_surface_report``.
 
 References
 ----------
@@ -41,10 +46,11 @@ from ._point import check_point, point_from_case
 from ._quantities import ABS, ALL_KEYS, COMPARED_KEYS, LABELS, NORM_KEYS, REL, norms
 from ._reference import REFERENCE_MIN_NODES, Reference, reference_for
 from ._report import SCALARS_FROM_FIELDS, markdown, write_report
-from ._results import (DEFAULT_DT_CELLS, Result, peer_tamaas, results_from_fields,
-                       to_conventions, viscosine_bem)
+from ._results import (DEFAULT_DT_CELLS, Result, SurfaceOutput, peer_tamaas,
+                       results_from_fields, to_conventions, viscosine_bem)
 from ._scalars import CONTACT, scalars_from_fields
 from ._study import ORDER_FLOOR, convergence, fit_order
+from ._surface_reference import SURFACE_DEFAULT_NODES, SURFACE_KEYS
 from ._tolerances import (DEFAULT_RTOL, FIELD_LAW, GRID_FACTOR, GRID_MAX_NODES,
                           MEASURED_FIELD_CONSTANTS, field_constants, field_tolerance,
                           grid_errors, grid_size, tolerances)
@@ -55,7 +61,8 @@ __all__ = [
     "EDGE_STILL", "FIELD_LAW", "GRID_FACTOR", "GRID_MAX_NODES", "LABELS",
     "MEASURED_FIELD_CONSTANTS", "MESSAGE_LIMIT", "MIRRORED", "NORM_KEYS", "ORDER_FLOOR",
     "POSITION_PANELS", "REFERENCE_MIN_NODES", "REL", "SCALARS_ALLOWED", "SCALARS_FROM_FIELDS",
-    "SLIP_GAIN", "Reference", "Result", "assert_agrees", "check_point", "convergence",
+    "SLIP_GAIN", "SURFACE_DEFAULT_NODES", "SURFACE_KEYS", "Reference", "Result",
+    "SurfaceOutput", "assert_agrees", "check_point", "convergence",
     "derivation_floor", "diagnose", "edge_offset", "evaluate", "field_constants",
     "field_tolerance", "fit_order", "grid_errors", "grid_size", "load_callable", "markdown",
     "norms", "peer_tamaas", "point_from_case", "position_floor", "read_scalars_jsonl",

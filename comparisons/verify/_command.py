@@ -22,12 +22,17 @@ from ..fields import MIN_POINTS, read_fields_csv
 from ..suite_inputs import ProfileShape
 from ._compare import evaluate
 from ._inputs import load_callable, read_scalars_jsonl
-from ._point import point_from_args
+from ._point import is_surface_case, point_from_args
 from ._quantities import ALL_KEYS
 from ._reference import reference_for
 from ._report import fmt, write_report
 from ._results import (DEFAULT_DT_CELLS, Result, as_fields, peer_tamaas, results_from_fields,
                        tamaas_module, to_conventions)
+from ._surface_fields import OWN_KEYS, as_surface_fields, check_fields, read_npz
+from ._surface_judge import evaluate as surface_evaluate
+from ._surface_judge import surface_result
+from ._surface_reference import SURFACE_DEFAULT_NODES, SURFACE_KEYS, surface_reference
+from ._surface_report import write_report as write_surface_report
 from ._tolerances import DEFAULT_RTOL
 
 DEFAULT_NODES = (1024, 2048, 4096, 8192)
@@ -57,6 +62,8 @@ def run(args) -> int:
 
 def _run(args) -> int:
     """`run`, its messages of bad input at any length."""
+    if args.case and is_surface_case(args.case):
+        return _run_surface(args)
     tols, rtol, rtol_given = _tolerance_options(args)
     point, case, si = point_from_args(args)
     nodes, cells = _resolutions(args)
@@ -90,9 +97,9 @@ def _run(args) -> int:
     return 0 if ev["verdict"] == "PASS" else 1
 
 
-def _tolerance_options(args):
+def _tolerance_options(args, keys=ALL_KEYS):
     """(tolerances asked for per quantity, rtol, whether rtol was asked for), checked."""
-    tols = _parse_tols(args.tol)
+    tols = _parse_tols(args.tol, keys)
     rtol_given = args.rtol is not None
     rtol = args.rtol if rtol_given else DEFAULT_RTOL
     if not (math.isfinite(rtol) and rtol > 0):
@@ -100,16 +107,17 @@ def _tolerance_options(args):
     return tols, rtol, rtol_given
 
 
-def _parse_tols(items):
-    """{quantity: tolerance} of the ``--tol NAME=VALUE`` options, checked."""
+def _parse_tols(items, keys=ALL_KEYS):
+    """{quantity: tolerance} of the ``--tol NAME=VALUE`` options, checked (``keys``: the
+    quantities of the case's geometry)."""
     out = {}
     for it in items:
         if "=" not in it:
-            raise bad_input("--tol", it, "not NAME=VALUE", ", ".join(ALL_KEYS))
+            raise bad_input("--tol", it, "not NAME=VALUE", ", ".join(keys))
         k, v = it.split("=", 1)
         k = k.strip()
-        if k not in ALL_KEYS:
-            raise bad_input("--tol", it, f"unknown quantity {k!r}", ", ".join(ALL_KEYS))
+        if k not in keys:
+            raise bad_input("--tol", it, f"unknown quantity {k!r}", ", ".join(keys))
         try:
             val = float(v)
         except ValueError:
@@ -256,6 +264,92 @@ def _print_verdict(ev):
             f"{k} {fmt(q['order_vs_reference'], '.2f')}" for k, q in conv["quantities"].items()))
     for line in ev["diagnosis"]:
         print(f"diagnosis: {line}")
+
+
+# ------------------------------------------------------------------------------ surface cases
+#: what --scalars may hold on a surface case
+SURFACE_SCALARS_ALLOWED = ("a UTF-8 file of JSON objects, one per line, keyed like the "
+                           "conventions' surface scalars (mu, mu_lateral, penetration, "
+                           "contact_fraction, load), with 'nodes' when there are several")
+
+
+def _run_surface(args) -> int:
+    """`_run` on a surface case: 2-D fields (``.npz``), scalars or a callable against the
+    case's certified values (`_surface_reference`, `_surface_judge`, `_surface_report`)."""
+    if args.peer:
+        raise bad_input("--peer", args.peer, f"with a surface case ({args.case})",
+                        "a line case (the sinusoid on the standard linear solid half-plane)")
+    if args.units == "SI":
+        raise bad_input("--units", "SI", f"with a surface case ({args.case})",
+                        "the conventions' units (docs/conventions.md, 'Surfaces')")
+    point, case, _ = point_from_args(args)
+    tols, rtol, rtol_given = _tolerance_options(args, SURFACE_KEYS)
+    if args.nodes and not args.callable:
+        raise bad_input("--nodes", " ".join(map(str, args.nodes)), "without --callable",
+                        "--nodes with --callable (fields files carry their own N)")
+    nodes = list(args.nodes or SURFACE_DEFAULT_NODES)
+    if any(n < MIN_POINTS for n in nodes) or len(set(nodes)) != len(nodes):
+        raise bad_input("--nodes", " ".join(map(str, nodes)), "too small or repeated",
+                        f"distinct integers >= {MIN_POINTS}")
+    check_output_dir("--out", args.out, create=False)
+    ref = surface_reference(point, case)
+    inputs = {}
+    if args.fields:
+        results, label = _surface_from_fields(args, point, ref, inputs)
+    elif args.scalars:
+        recs = read_scalars_jsonl(args.scalars, keys=OWN_KEYS, allowed=SURFACE_SCALARS_ALLOWED)
+        inputs[f"--scalars {args.scalars}"] = f"sha256 {_sha(args.scalars)}"
+        results = [Result(r["nodes"], None, r["scalars"], [], "solver") for r in recs]
+        label = args.label or f"scalars from {Path(args.scalars).name}"
+    else:
+        fn = load_callable(args.callable)
+        inputs["--callable"] = args.callable
+        label = args.label or args.callable
+        results = []
+        for n in sorted(nodes):
+            obj = _solve(lambda k: fn(dict(point), k), n, label)
+            f, own = as_surface_fields(obj, "--callable", label, _aspect(ref))
+            results.append(surface_result(f, own, point, ref, "--callable", label, n))
+    ev = surface_evaluate(results, ref, rtol=rtol, tol=tols, rtol_given=rtol_given)
+    try:
+        write_surface_report(args.out, ev, point, ref, results, label, inputs, case,
+                             figures=not args.no_figures)
+    except OSError as exc:
+        raise Failed(_short(f"--out {args.out}: cannot write the report "
+                            f"({exc.strerror or exc})")) from None
+    _print_verdict(ev)
+    failed = f" ({', '.join(ev['failed'])})" if ev["failed"] else ""
+    print(f"verify: {ev['verdict']}{failed}; report in {os.path.join(args.out, 'report.md')}",
+          file=sys.stderr)
+    return 0 if ev["verdict"] == "PASS" else 1
+
+
+def _aspect(ref):
+    """Ly/Lx of a surface reference (its stated grid's y starts at −½ Ly/Lx)."""
+    return -2.0 * float(ref.fields["y"][0])
+
+
+def _surface_from_fields(args, point, ref, inputs):
+    """(results, label) of ``--fields`` on a surface case: ``.npz`` files of the conventions,
+    each file's hash in ``inputs``; the speed and direction a file states must be the case's."""
+    results = []
+    for path in args.fields:
+        raw, scalars = read_npz(path)
+        f = check_fields(raw, "--fields", path, _aspect(ref))
+        for k in ("speed", "direction"):
+            want = float(point.get(k, 0.0))
+            if k in scalars and not math.isclose(scalars[k], want, rel_tol=1e-9, abs_tol=1e-12):
+                raise bad_input("--fields", path, f"{k} = {scalars[k]:g} in the file, the case "
+                                f"{args.case} has {want:g}", "the case's operating point")
+        own = {k: v for k, v in scalars.items() if k in OWN_KEYS and k != "load"}
+        results.append(surface_result(f, own, point, ref, "--fields", path))
+        inputs[f"--fields {path}"] = (f"sha256 {_sha(path)}, {f['x'].size} x {f['y'].size} "
+                                      "points")
+    if len({r.nodes for r in results}) != len(results):
+        raise bad_input("--fields", " ".join(args.fields), "two files with the same grid",
+                        "one file per resolution")
+    label = args.label or "fields from " + ", ".join(Path(p).name for p in args.fields)
+    return results, label
 
 
 def _sha(path):

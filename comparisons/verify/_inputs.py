@@ -29,9 +29,11 @@ SCALARS_ALLOWED = ("a UTF-8 file of JSON objects, one per line, keyed like the c
                    "(mu, tau_f, penetration, ka, ...), with 'nodes' when there are several")
 
 
-def read_scalars_jsonl(path, option="--scalars") -> list[dict]:
-    """The results of a JSON-lines file of scalars, each a dict (``nodes`` kept when given)."""
-    text = read_text(option, path, SCALARS_ALLOWED)
+def read_scalars_jsonl(path, option="--scalars", keys=COMPARED_KEYS,
+                       allowed=SCALARS_ALLOWED) -> list[dict]:
+    """The results of a JSON-lines file of scalars, each a dict of ``keys`` (``nodes`` kept
+    when given; a surface case reads its own keys)."""
+    text = read_text(option, path, allowed)
     out = []
     for i, ln in enumerate(text.splitlines(), 1):
         if not ln.strip() or ln.lstrip().startswith("#"):
@@ -40,28 +42,28 @@ def read_scalars_jsonl(path, option="--scalars") -> list[dict]:
             obj = json.loads(ln)
         except ValueError as exc:
             raise bad_input(option, path, f"line {i} is not JSON ({exc.msg})",
-                            SCALARS_ALLOWED) from None
+                            allowed) from None
         if not isinstance(obj, dict):
-            raise bad_input(option, path, f"line {i} is not a JSON object", SCALARS_ALLOWED)
+            raise bad_input(option, path, f"line {i} is not a JSON object", allowed)
         rec = {}
-        for k in COMPARED_KEYS:
+        for k in keys:
             v = obj.get(k)
             if v is None:
                 continue
             if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
                 raise bad_input(option, path, f"line {i}: {k} = {v!r} is not a finite number",
-                                SCALARS_ALLOWED)
+                                allowed)
             rec[k] = float(v)
         if not rec:
             raise bad_input(option, path, f"line {i} has none of the keys "
-                            f"{', '.join(COMPARED_KEYS)}", SCALARS_ALLOWED)
+                            f"{', '.join(keys)}", allowed)
         nodes = obj.get("nodes")
         if nodes is not None and (isinstance(nodes, bool) or not isinstance(nodes, int)
                                   or nodes < 1):
             raise bad_input(option, path, f"line {i}: nodes = {nodes!r}", "a positive integer")
         out.append({"nodes": nodes, "scalars": rec})
     if not out:
-        raise bad_input(option, path, "no JSON object in the file", SCALARS_ALLOWED)
+        raise bad_input(option, path, "no JSON object in the file", allowed)
     if len(out) > 1 and any(r["nodes"] is None for r in out):
         raise bad_input(option, path, f"{len(out)} results without 'nodes'",
                         "one result, or a 'nodes' key on every line (a convergence study)")

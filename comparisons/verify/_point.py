@@ -30,6 +30,15 @@ def point_from_case(name):
     return point, case
 
 
+def is_surface_case(name):
+    """Whether ``name`` is a surface case of the suite (an unknown name is `point_from_case`'s
+    to refuse)."""
+    try:
+        return _suite.is_surface(_suite.get_case(name))
+    except _suite.SuiteError:
+        return False
+
+
 def check_point(point, option_prefix="--"):
     """BadInput unless the operating point dict is valid (ranges as the two roads accept)."""
     def num(name, test, allowed):

@@ -31,6 +31,7 @@ import numpy as np
 from viscosine import Fields
 from viscosine.fields import WIDTH
 
+from .. import roads
 from .. import suite as _suite
 from .._errors import bad_input
 from ..fields import MIN_POINTS, bem_fields, check_grid
@@ -49,6 +50,7 @@ class Result:
     patches: list
     source: str   # "fields" or "solver"
     errors: dict | None = None  # the solver's own error estimates (absolute), when it gave some
+    own: tuple = ()  # on a surface case, the scalars the solver gave itself (not from fields)
 
 
 def as_fields(obj, option, label):
@@ -104,12 +106,33 @@ def to_conventions(fields, E0, nu, amplitude):
     return out
 
 
+@dataclass
+class SurfaceOutput:
+    """What `viscosine_bem` returns on a surface case: the fields (the conventions' arrays
+    ``x``, ``y``, ``pressure``, ``displacement``, ``gap``) and the solver's own scalars."""
+
+    fields: dict
+    scalars: dict
+
+
 def viscosine_bem(point, nodes):
     """viscosine's own BEM as a ``--callable``: ``comparisons.verify:viscosine_bem``.
 
     Returns the BEM's fields at its panel centres (x/λ = j/N − ½) as a dict of arrays.  A
-    point's ``layer`` goes to ``bem.solve`` (through `comparisons.roads.bem_solution`).
+    point's ``layer`` goes to ``bem.solve`` (through `comparisons.roads.bem_solution`).  On a
+    surface case (a point with ``surface``) the surface BEM on N × N panels (N × N Ly/Lx;
+    `comparisons.roads.surface_solution`, the layer included): a `SurfaceOutput`.
     """
+    if point.get("surface"):
+        res = roads.surface_solution(point, int(nodes))
+        if not res.success:
+            raise RuntimeError(f"surface BEM not converged at N = {nodes}: "
+                               f"{res.message.splitlines()[0]}")
+        f = res.fields()
+        return SurfaceOutput({"x": f.x, "y": f.y, "pressure": f.pressure,
+                              "displacement": f.displacement, "gap": f.gap},
+                             {k: float(getattr(res, k)) for k in
+                              ("mu", "mu_lateral", "penetration", "contact_fraction")})
     res = _suite.bem_solution(point, int(nodes), base="/")
     if not res.success:
         raise RuntimeError(f"BEM not converged at N = {nodes}: {res.message.splitlines()[0]}")
