@@ -164,6 +164,19 @@ def test_friction_and_lateral_force_of_the_opposite_sign_are_diagnosed(tmp_path,
     assert "lateral force has the opposite sign" in diag[1] and "to the left of V" in diag[1]
 
 
+@pytest.mark.parametrize("direction, expected", [
+    (-30.0, "mirrored (y → −y; "), (210.0, "mirrored (x → −x, y → −y; ")])
+def test_fields_of_a_mirrored_direction_are_diagnosed(tmp_path, capsys, direction, expected):
+    """The oblique case solved at −θ (θ clockwise) or θ + 180° (sliding toward −V)."""
+    point = dict(suite.get_case(OBLIQUE)["point"], direction=direction)
+    path = _write_npz(tmp_path / "m.npz", verify.viscosine_bem(point, 64).fields)
+    rc, out, _ = _run(capsys, "--case", OBLIQUE, "--fields", path, "--out", str(tmp_path),
+                      "--no-figures")
+    assert rc == 1
+    diag = [ln for ln in out.splitlines() if ln.startswith("diagnosis: ")]
+    assert sum(expected in d for d in diag) == 1, diag
+
+
 def test_the_half_space_answer_fails_the_layer_case(tmp_path, capsys):
     """viscosine_bem solves the case's layer; the same solver without it fails."""
     (tmp_path / "no_layer.py").write_text(

@@ -149,14 +149,21 @@ def _field_slip(fields, reference):
     if not base > 0.0:
         return None
     # σ(−x) at x_i is the value at the index −i (mod n): the grid is symmetric about 0
-    for axis, what in ((0, "x is mirrored: the surface slides toward −V, or x points the other "
-                           "way"),
-                       (1, "y is mirrored: θ measured clockwise, or y points the other way")):
-        mir = _pressure_l2(fields, reference, np.roll(np.flip(p, axis), 1, axis))
-        if mir < SLIP_GAIN * base:
-            return (f"the fields match the reference mirrored ({'xy'[axis]} → −{'xy'[axis]}; "
-                    f"σ L2 / max σ {base:.1e} → {mir:.1e}): {what} (docs/conventions.md, "
-                    "'Surfaces')")
+    mirrors = {"x → −x": ((0,), "x is mirrored, or the surface slides along −V·x̂"),
+               "y → −y": ((1,), "y is mirrored: θ measured clockwise, or y points the other "
+                                "way"),
+               "x → −x, y → −y": ((0, 1), "the fields are turned by 180°: the surface slides "
+                                          "toward −V (θ + 180°)")}
+    tried = []
+    for name, (axes, what) in mirrors.items():
+        q = p
+        for axis in axes:
+            q = np.roll(np.flip(q, axis), 1, axis)
+        tried.append((_pressure_l2(fields, reference, q), name, what))
+    mir, name, what = min(tried)
+    if mir < SLIP_GAIN * base:
+        return (f"the fields match the reference mirrored ({name}; σ L2 / max σ {base:.1e} → "
+                f"{mir:.1e}): {what} (docs/conventions.md, 'Surfaces')")
     moves = [(_pressure_l2(fields, reference, np.roll(p, k, axis)), k, axis)
              for axis in (0, 1) for k in (1, -1)]
     rolled, k, axis = min(moves)
