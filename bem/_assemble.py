@@ -44,6 +44,51 @@ def _runs(active: np.ndarray) -> list[tuple[int, int]]:
     return [((int(f) + start) % n, int(l - f)) for f, l in zip(firsts, lasts)]
 
 
+#: a patch carrying at most this share of the load, separated from another patch by gaps
+#: within the validity gate's round-off (ROUNDOFF of the heights' scale), is not a patch
+#: (`counted_contact`); far below LOAD_MISMATCH, so that no checked quantity moves
+SLIVER_SHARE = 1e-9
+
+
+def counted_contact(sigma, gap, active, scale):
+    """The active set as the patches are counted: ``active`` with its round-off slivers set
+    free (a new array; ``active`` itself when there are none).
+
+    A sliver is a run of contact panels carrying at most SLIVER_SHARE of the load next to a
+    free run all of whose gaps are within the validity gate's round-off (``ROUNDOFF *
+    scale``, ``scale`` the heights' scale: h k, a window's drop): the gate counts those gaps
+    as zero, so the sliver and the patch beyond them are one contact to round-off.  Near
+    full contact the edges of the gap sit where both the pressure and the gap are at
+    round-off, and the solve leaves one- or two-panel runs there carrying 1e-12 of the load
+    across gaps of 3e-13 h; counted, they change the number of patches from one grid to the
+    next and withhold the estimate.  Setting them free keeps the patch's own edge fits
+    (they reach √N/16 panels and more into the gap) and moves the load by at most
+    SLIVER_SHARE; the result's fields are not changed.  The largest patch is never a sliver.
+    """
+    runs = _runs(active)
+    if len(runs) < 2:
+        return active
+    n = active.size
+    total = float(sigma[active].sum())
+    allowance = ROUNDOFF * scale
+    loads = [float(sigma[(f + np.arange(m)) % n].sum()) for f, m in runs]
+    largest = int(np.argmax(loads))
+    out = active
+    for i, (first, length) in enumerate(runs):
+        if i == largest or not (total > 0.0 and loads[i] <= SLIVER_SHARE * total):
+            continue
+        nxt_first = runs[(i + 1) % len(runs)][0]
+        prv_first, prv_len = runs[i - 1]
+        after = (first + length + np.arange((nxt_first - (first + length)) % n)) % n
+        before = (prv_first + prv_len + np.arange((first - (prv_first + prv_len)) % n)) % n
+        if any(ids.size and float(np.max(np.abs(gap[ids]))) <= allowance
+               for ids in (after, before)):
+            if out is active:
+                out = active.copy()
+            out[(first + np.arange(length)) % n] = False
+    return out
+
+
 def _root_near_zero(pos, vals, deg):
     """Real root nearest 0 of the least-squares polynomial of degree deg through (pos, vals)."""
     scale = float(np.max(np.abs(pos)))
@@ -720,7 +765,9 @@ def _contact(res, grid, profile, material, speed, mean_p):
     if active.all():
         patches = (_full_patch(sigma, grid.y, profile, mean_p),)
         return True, patches, 1.0, math.pi, None, patches[0].ke_hat, warnings
-    patches = tuple(_patches(sigma, res["gap"], active, grid.x, grid.h, profile, grid.y,
+    # round-off slivers are not patches (`counted_contact`), as for the estimate
+    counted = counted_contact(sigma, res["gap"], active, grid.scale)
+    patches = tuple(_patches(sigma, res["gap"], counted, grid.x, grid.h, profile, grid.y,
                              grid.window, edge_lags(material, speed, grid.h, grid.n)))
     frac = float(sum(p.width for p in patches))
     if len(patches) == 1:

@@ -47,6 +47,18 @@ DUAL_MIN_NODES = 2 ** 19
 #: standard linear solid with E_inf/E0 = 3 up to 2^21 panels; stiffer materials, whose floor
 #: reaches 1e-7 of the load and lets pressures of that size sit on free panels, keep the primal
 DUAL_MAX_FLOOR = 2e-8
+#: ... and at most this fraction of the load's deficit below the full-contact load
+#: (`_full_contact_deficit`), the scale of the pressures next to the gap: 1.6 % below p_FC
+#: (E_inf/E0 = 3, 2^19 panels) the floor is 1.1e-7 of it and the answer is right; 1e-6 below it
+#: is 1.8e-3 and ka was 6e-7 off, jumping from grid to grid (the primal step's: 1e-9).  The
+#: band within 1e-3 below p_FC keeps the primal step
+DUAL_MAX_DEFICIT_FLOOR = 1e-6
+#: near full contact the Krylov tolerance is tol times this times the load's deficit over the
+#: load, where that is smaller (`_near_full_tol`) ...
+NEAR_FULL_TOL_SCALE = 100.0
+#: ... but at least this many machine epsilons of the 2-norm of the heights (over their scale):
+#: 1e-13 at 2^19 panels was reached, at 2^20 GMRES stagnated
+NEAR_FULL_TOL_FLOOR = 8.0
 #: a cold start's Krylov tolerance (as tol) until its active set settles: the decisions of
 #: those steps need no more (the paper's point at 2^20: 1e-5, 1e-6, 1e-7 take 169, 143, 175
 #: FFT pairs; a tolerance relative to each step's first residual let it grow without bound
@@ -213,6 +225,30 @@ def _dual_floor(grid: _Grid):
     return 16.0 * np.finfo(float).eps * grid.op.max_inverse * grid.amp
 
 
+def _full_contact_deficit(grid: _Grid, load):
+    """How far the load lies below the grid's full-contact load, p_FC - load (units of the
+    pressure): the full-contact pressure C^+ y + load has its minimum at load - p_FC.  Near
+    full contact the pressures next to the gap are of this order, not of the load's: the
+    free-panel step's rounding floor must be small against them too (1e-6 below p_FC, it left
+    ka 6e-7 off and jumping from grid to grid at 2^19 ... 2^21, where the primal step's
+    converged like N^-2)."""
+    return max(-float(grid.op.pseudo_solve(grid.y).min()) - load, 0.0)
+
+
+def _near_full_tol(grid: _Grid, load, deficit, tol):
+    """The Krylov tolerance of a grid near full contact: ``tol`` times NEAR_FULL_TOL_SCALE
+    times the deficit over the load where that is smaller, but not below NEAR_FULL_TOL_FLOOR
+    machine epsilons of the heights' 2-norm (what a residual's rounding allows).  The gaps
+    and the pressures next to a narrow gap scale with the deficit; a residual of tol = 1e-10 h
+    left ka jumping by 1e-6 from grid to grid 1e-6 below p_FC (E_inf/E0 = 3, V/V0 = 1, N =
+    2^16 ... 2^21), against 1e-8 at 2^19 with 1e-13."""
+    if deficit is None or not deficit < load:
+        return tol
+    floor = NEAR_FULL_TOL_FLOOR * np.finfo(float).eps * float(np.linalg.norm(grid.y)) \
+        / grid.scale
+    return min(tol, max(floor, tol * NEAR_FULL_TOL_SCALE * deficit / load))
+
+
 @dataclass
 class _Mode:
     """How the active-set iteration on one grid steps now (`_solve_grid`, `_judge`)."""
@@ -242,10 +278,15 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     gap = None  # of the current sigma, once solved for
     new = np.empty(n, dtype=np.bool_)
     # the free-panel step on a large grid, unless its rounding floor is a visible part of the
-    # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number)
+    # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number) or of
+    # the pressures next to a gap near full contact
+    deficit = None if load is None or grid.window else _full_contact_deficit(grid, load)
+    tol = _near_full_tol(grid, load, deficit, tol)
     mode = _Mode(loose=cold and COLD_KRYLOV_TOL > tol,
                  dual=(load is not None and n >= DUAL_MIN_NODES and not grid.window
-                       and _dual_floor(grid) <= DUAL_MAX_FLOOR * load), retreat=retreat)
+                       and _dual_floor(grid) <= DUAL_MAX_FLOOR * load
+                       and _dual_floor(grid) <= DUAL_MAX_DEFICIT_FLOOR * deficit),
+                 retreat=retreat)
     for it in range(1, max_outer + 1):
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
