@@ -34,6 +34,16 @@ V → ∞ is the elastic contact with J(0+) only for a surface none of whose mod
 perpendicular to ê (a surface uniform in y sliding along x; the bi-sinusoid at 30°), not for the
 bi-sinusoid sliding along x, whose cos(ky) family stays relaxed.
 
+A layer of thickness d on a rigid foundation (``layer={"thickness": k d}`` or
+``{"thickness_over_wavelength": d/Lx}``, with ``"foundation"`` and ``"nu"``) replaces the
+half-space: only E depends on the frequency and mode q is a plane-strain mode along q, so its
+symbol is the half-space's times the line's layer factor, Ĉ(q) S(|q| k d, ν) (S from Navier's
+equations in `analytic._layer`, the Fourier reference's own; 1 exactly from |q| k d = 25 on).
+Nothing else changes (the dissipation form weighs each mode by its symbol, full contact is
+σ̂_q = ẑ_q/(Ĉ(q) S)); the uniform mode, finite on a layer, gives the mean compression
+k v̄0 = C (k d) J0 p̃ (relaxed J0: the mean pressure is static; C = (1 − 2ν)/(1 − ν)² bonded,
+1 frictionless) and the approach Δ/h_ref + v̄0/h_ref (docs/layers.md §4, §7).
+
 Transform convention.  On the grid of nx × ny panel centres x_i = i/nx − ½,
 y_j = (j/ny − ½)·aspect (the crest of the bi-sinusoid at i = nx/2, j = ny/2), point values
 f_ij have the coefficients f̂(m, n) = (1/(nx ny)) Σ f_ij e^{−2πi(m x_i + n y_j/aspect)}, wave
@@ -129,6 +139,7 @@ from __future__ import annotations
 import math
 import numbers
 import time
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -138,6 +149,8 @@ from scipy.optimize import brentq, minimize
 
 from viscosine.checks import bad, check_reals, is_integer, real, series
 from viscosine.protocol import plain
+
+from ._layer import check_layer, layer_factor, uniform_compliance
 
 _TWO_PI = 2.0 * math.pi
 
@@ -394,7 +407,7 @@ def _interpolate(values, nx, ny, shift=0.0):
 class _Grid:
     """Wave vectors and the alias-averaged symbols of an nx × ny grid (rfft2 layout)."""
 
-    def __init__(self, nx, ny, aspect, theta, speed, material):
+    def __init__(self, nx, ny, aspect, theta, speed, material, layer=None):
         self.nx, self.ny, self.aspect = nx, ny, aspect
         self.e = (math.cos(math.radians(theta)), math.sin(math.radians(theta)))
         self.speed, self.material = speed, material
@@ -404,7 +417,11 @@ class _Grid:
         alt_m = np.where(np.abs(mx) * 2 == nx, -mx, mx) if nx % 2 == 0 else mx
         alt_n = np.where(ny_ * 2 == ny, -ny_, ny_) if ny % 2 == 0 else ny_
         self._pairs = [(a, b / aspect) for a in (mx, alt_m) for b in (ny_, alt_n)]
-        c = self.average(lambda qx, qy: self._compliance(qx, qy))
+        # on a layer each alias's S(|q| k d, ν) (the half-space: None, its arithmetic unchanged)
+        self._factors = [None] * 4 if layer is None else [
+            layer_factor(np.hypot(qx, qy) * layer["thickness"], layer["nu"],
+                         layer["foundation"]) for qx, qy in self._pairs]
+        c = self.average(lambda qx, qy, f: self._compliance(qx, qy, f))
         self.symbol = c
         mag = np.abs(c)
         mag = mag[mag > 0.0]
@@ -412,11 +429,11 @@ class _Grid:
         e, p = self.e, (-self.e[1], self.e[0])
         # (q·ê) Im Ĉ and (q·ê⊥) Im Ĉ: the dissipation and the lateral force per |σ̂_q|²
         self.dissipation = self.average(
-            lambda qx, qy: (qx * e[0] + qy * e[1]) * self._compliance(qx, qy).imag)
+            lambda qx, qy, f: (qx * e[0] + qy * e[1]) * self._compliance(qx, qy, f).imag)
         self.lateral = self.average(
-            lambda qx, qy: -(qx * p[0] + qy * p[1]) * self._compliance(qx, qy).imag)
-        self.slope = self.average(lambda qx, qy: 1j * (qx * e[0] + qy * e[1]))
-        self.slope_lateral = self.average(lambda qx, qy: 1j * (qx * p[0] + qy * p[1]))
+            lambda qx, qy, f: -(qx * p[0] + qy * p[1]) * self._compliance(qx, qy, f).imag)
+        self.slope = self.average(lambda qx, qy, f: 1j * (qx * e[0] + qy * e[1]))
+        self.slope_lateral = self.average(lambda qx, qy, f: 1j * (qx * p[0] + qy * p[1]))
         # rfft2 holds the columns n = 1 … ny/2 − 1 once for the pair ±q: weight 2 in sums
         w = np.full(c.shape, 2.0)
         w[:, 0] = 1.0
@@ -425,16 +442,20 @@ class _Grid:
         self.weight = w
 
     def average(self, f):
-        """f on the rfft2 layout, averaged over the aliases of the Nyquist rows and columns."""
-        vals = [f(qx, qy) for qx, qy in self._pairs]
+        """f(qx, qy, S) on the rfft2 layout, averaged over the aliases of the Nyquist rows and
+        columns (S: the alias's layer factor, None on the half-space)."""
+        vals = [f(qx, qy, s) for (qx, qy), s in zip(self._pairs, self._factors)]
         return 0.25 * (vals[0] + vals[1] + vals[2] + vals[3])
 
-    def _compliance(self, qx, qy):
+    def _compliance(self, qx, qy, factor=None):
         q = np.hypot(qx, qy)
         j = complex_compliance(qx * self.e[0] + qy * self.e[1], self.speed, self.material)
         out = np.zeros(q.shape, dtype=complex)
         nz = q > 0.0
-        out[nz] = 2.0 * j[nz] / q[nz]
+        if factor is None:
+            out[nz] = 2.0 * j[nz] / q[nz]
+        else:                                   # a layer: the mode's factor S(|q| k d, ν)
+            out[nz] = 2.0 * j[nz] * factor[nz] / q[nz]
         return out
 
     def rfft(self, f):
@@ -908,6 +929,16 @@ class SurfaceSolution:
         (len(x), len(y)), gap/h_ref and (u − mean u)/h_ref.
     elapsed : float
         Wall time, seconds.
+    layer : dict or None
+        None on the half-space; on a layer its description: ``thickness`` (k d),
+        ``thickness_over_wavelength`` (d/Lx), ``foundation``, ``nu``, ``uniform_compliance``
+        (C of the uniform mode).
+    mean_displacement, approach : float or None
+        On a layer (None on the half-space): v̄0/h_ref, the layer's uniform compression under
+        the mean pressure (k v̄0 = C (k d) J0 p̃, J0 the relaxed compliance), and Δ/h_ref +
+        v̄0/h_ref, the crest's approach from the undeformed top face (the BEM's
+        ``diagnostics["layer"]``; also in ``diagnostics["layer"]`` here).  Their relative
+        estimates are in ``error_estimate``.
     """
 
     success: bool
@@ -944,6 +975,9 @@ class SurfaceSolution:
     displacement: np.ndarray = field(repr=False)
     elapsed: float = 0.0
     warnings: tuple = ()
+    layer: dict | None = None
+    mean_displacement: float | None = None
+    approach: float | None = None
 
     def scalars(self):
         """The six scalars of the surface conventions, as a dict."""
@@ -963,6 +997,9 @@ class SurfaceSolution:
                     "observed_order": self.observed_order, "extrapolated": self.extrapolated,
                     "nodes": self.nodes, "grids": self.grids, "levels": self.levels,
                     "diagnostics": self.diagnostics, "elapsed": self.elapsed})
+        if self.layer is not None:  # the half-space's record is unchanged
+            out.update({"layer": self.layer, "mean_displacement": self.mean_displacement,
+                        "approach": self.approach})
         return plain(out)
 
 
@@ -1007,6 +1044,57 @@ def _check_nodes(nodes, surf):
                       f"grids of at most {MAX_NODES}² points (nx = {nx} gives ny = {ny} for "
                       f"this cell)")
     return tuple(seq)
+
+
+#: the keys of the ``layer`` mapping: one of the two thicknesses, the foundation and ν
+LAYER_KEYS = ("thickness", "thickness_over_wavelength", "foundation", "nu")
+
+
+def _check_layer(layer):
+    """The ``layer`` argument as ``{"thickness": k d, "foundation", "nu"}`` (None: the half-space).
+
+    A mapping with ``"foundation"``, ``"nu"`` and exactly one of ``"thickness"`` (k d, k =
+    2π/Lx) and ``"thickness_over_wavelength"`` (d/Lx); the entries are checked by
+    `analytic._layer.check_layer` (the Fourier reference's), the first bad one refused by
+    name (``layer['nu']=…``).
+    """
+    if layer is None:
+        return None
+    what = ("None (the half-space) or a mapping {'thickness': k d > 0 (k = 2π/Lx) or "
+            "'thickness_over_wavelength': d/Lx > 0, 'foundation': 'bonded' or 'frictionless', "
+            "'nu': a Poisson ratio in (-1, 0.5]}")
+    if not isinstance(layer, Mapping):
+        raise bad("layer", layer, what)
+    keys = set(layer)
+    given = [k for k in ("thickness", "thickness_over_wavelength") if k in keys]
+    missing = [k for k in ("foundation", "nu") if k not in keys]
+    extra = sorted(map(repr, keys - set(LAYER_KEYS)))
+    if len(given) != 1 or missing or extra:
+        why = "; ".join(x for x in (
+            "neither thickness nor thickness_over_wavelength" if not given else
+            "both thickness and thickness_over_wavelength" if len(given) == 2 else "",
+            f"missing {', '.join(missing)}" if missing else "",
+            f"unknown {', '.join(extra)}" if extra else "") if x)
+        raise bad("layer", dict(layer), "a mapping with the keys foundation, nu and one of "
+                  f"thickness (k d) and thickness_over_wavelength (d/Lx) ({why})")
+    if given[0] == "thickness":
+        kd = layer["thickness"]
+    else:
+        dl = real("layer['thickness_over_wavelength']", layer["thickness_over_wavelength"],
+                  "a finite thickness d/Lx > 0 (layer=None for the half-space)",
+                  lambda v: v > 0.0 and math.isfinite(_TWO_PI * v), kind=True)
+        kd = _TWO_PI * dl
+    try:
+        return check_layer({"thickness": kd, "foundation": layer["foundation"],
+                            "nu": layer["nu"]})
+    except ValueError as exc:
+        if given[0] == "thickness":
+            raise
+        # the thickness was given over Lx: name it so
+        raise ValueError(str(exc).replace(
+            f"layer['thickness']={kd!r}",
+            f"layer['thickness_over_wavelength']={layer['thickness_over_wavelength']!r} "
+            f"(k d = {kd!r})")) from None
 
 
 def _shortest_relaxation(material):
@@ -1074,7 +1162,7 @@ def _solve_grid(grid, zk, control, value, asked, start, tol, h_ref):
 
 
 def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=0.0,
-          ratio=None, material=None, nodes=None, tol=TOL):
+          ratio=None, material=None, nodes=None, tol=TOL, layer=None):
     """Steady sliding of a rigid periodic surface over a viscoelastic half-space.
 
     Parameters
@@ -1107,6 +1195,20 @@ def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=
         (nx, 2nx, 4nx) up to `MAX_NODES`.
     tol : float
         Stop when the iteration's residual ‖T y − y‖∞ is below tol·max σ (default 1e-10).
+    layer : mapping, optional
+        A layer of thickness d on a rigid foundation in place of the half-space (None, the
+        default: the half-space, solved exactly as without this argument):
+        ``{"thickness": k d}`` (k = 2π/Lx) or ``{"thickness_over_wavelength": d/Lx}``, with
+        ``"foundation"`` (``"bonded"`` or ``"frictionless"``) and ``"nu"`` (in (−1, 0.5]),
+        as `analytic.fourier_solve` takes it.  Mode q of the operator is the half-space's times
+        the layer factor S(|q| k d, ν) of `analytic._layer` (Navier's equations, one mode at a
+        time); the scalars keep their meaning (Δ from the mean plane of the deformed surface)
+        and the result adds ``layer``, ``mean_displacement`` v̄0/h_ref (the layer's uniform
+        compression, k v̄0 = C (k d) J0 p̃, J0 the relaxed compliance, C of
+        `analytic._layer.uniform_compliance`) and ``approach`` Δ/h_ref + v̄0/h_ref, as the
+        BEM's ``diagnostics["layer"]``.  An approach that reaches the foundation (approach ·
+        k h_ref ≥ k d) is not a success; under penetration control Δ/h_ref ≥ k d/(k h_ref) is
+        refused.
 
     Returns
     -------
@@ -1133,6 +1235,7 @@ def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=
                                   ("speed", speed), ("direction", direction),
                                   ("aspect", aspect), ("tol", tol)), _TESTS)
     mat = _material(ratio, material)
+    lay = _check_layer(layer)
     surf = _Surface(heights, vals["aspect"])
     levels = _check_nodes(nodes, surf)
     w, theta, tol = vals["speed"], vals["direction"], vals["tol"]
@@ -1143,6 +1246,11 @@ def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=
     h_ref = surf.extent(fine_samples)
     if not h_ref > 0.0:
         raise bad("heights", heights, surf.what + " (max z − mean z is not > 0)")
+    if lay is not None and control == "penetration" and asked * h_ref >= lay["thickness"]:
+        # the approach is at least Δ (C ≥ 0): the crest would reach the foundation
+        raise bad("penetration", penetration, f"a penetration Δ/h_ref below k d/(k h_ref) = "
+                  f"{lay['thickness'] / h_ref:.6g} on this layer (the approach Δ/h_ref + "
+                  "v̄0/h_ref, at least Δ/h_ref, must not reach the foundation)")
     value = asked if control == "load" else h_ref * (1.0 - asked)
     warnings = []
     rows, failure = [], None
@@ -1150,7 +1258,7 @@ def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=
     for n in levels:
         t1 = time.perf_counter()
         nx, ny = surf.grid_for(n)
-        grid = _Grid(nx, ny, vals["aspect"], theta, w, mat)
+        grid = _Grid(nx, ny, vals["aspect"], theta, w, mat, lay)
         pair = []
         for k, shift in enumerate(SHIFTS):
             zk = fine_samples if (n, shift) == (levels[-1], 0.0) else surf.sample(nx, ny, shift)
@@ -1182,6 +1290,12 @@ def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=
                   aspect=vals["aspect"], material=material_out, h_ref=h_ref,
                   grids=tuple((r["nodes"], r["ny"]) for r in rows), levels=tuple(rows),
                   nodes=rows[-1]["nodes"] if rows else 0, elapsed=elapsed)
+    if lay is not None:
+        common["layer"] = {"thickness": lay["thickness"],
+                           "thickness_over_wavelength": lay["thickness"] / _TWO_PI,
+                           "foundation": lay["foundation"], "nu": lay["nu"],
+                           "uniform_compliance": uniform_compliance(lay["nu"],
+                                                                    lay["foundation"])}
     if failure is not None:
         nan = math.nan
         empty = np.zeros((0, 0))
@@ -1233,6 +1347,27 @@ def solve(*, load=None, penetration=None, speed, heights, aspect=1.0, direction=
         message = "non-finite or non-positive scalars; not a solution"
     diagnostics = {k: fine[k] for k in ("mu_direct", "mu_lateral_direct",
                                          "contact_fraction_nodal", "complementarity")}
+    if lay is not None:
+        load_out = out["load"] if control == "penetration" else asked
+        # the uniform mode: k v̄0 = C (k d) J0 p̃ (static: the relaxed J0), over k h_ref
+        mean = common["layer"]["uniform_compliance"] * lay["thickness"] * mat[0] * load_out \
+            / h_ref
+        approach = out["penetration"] + mean
+        est["mean_displacement"] = est["load"]      # v̄0 ∝ p̃
+        est["approach"] = ((est["penetration"] * abs(out["penetration"])
+                            + est["load"] * abs(mean)) / abs(approach)
+                           if approach != 0.0 else math.inf)
+        common.update(mean_displacement=mean, approach=approach)
+        diagnostics["layer"] = dict(common["layer"], mean_displacement=mean, approach=approach)
+        if success and approach * h_ref >= lay["thickness"]:
+            success = False
+            message = (f"the crest's approach {approach:.6g} h_ref reaches the foundation at "
+                       f"d = {lay['thickness'] / h_ref:.6g} h_ref (k d = "
+                       f"{lay['thickness']:.6g}, k h_ref = {h_ref:.6g}): not a solution of "
+                       "small strains")
+        if lay["thickness"] * nx / _TWO_PI < 4.0:
+            warnings.append(f"the layer's thickness d = {lay['thickness'] / _TWO_PI:.3g} Lx "
+                            f"spans fewer than 4 panels on the finest grid ({nx} along x)")
     return SurfaceSolution(success=success, status=0 if success else 1, message=message,
                            load=out["load"] if control == "penetration" else asked,
                            full_contact=fine["full_contact"],

@@ -403,15 +403,15 @@ def surface_harmonics(description):
 def surface_reference_solution(point, nodes):
     """The independent surface reference (``analytic.surface_reference.solve``: Douglas–Rachford
     splitting, its own measurements and Richardson estimate) at a surface operating point dict
-    on the grids ``nodes`` (panels along x).  It has no layer: ValueError for a point with
-    one."""
+    on the grids ``nodes`` (panels along x); the point's ``layer`` (a plain description, see
+    `layer`), if any, under it as the reference's own mapping (k d, foundation, ν: mode q's
+    symbol times its own layer factor S(|q| k d, ν), ``analytic._layer``)."""
     from analytic import surface_reference
-    if point.get("layer") is not None:
-        raise ValueError("layer is not allowed: the surface reference solves the half-space only")
+    kw = {} if point.get("layer") is None else {"layer": _analytic_layer(point["layer"])}
     heights, aspect = surface_harmonics(point["surface"])
     return surface_reference.solve(**_surface_point_kwargs(point), heights=heights,
                                    aspect=aspect, ratio=float(point.get("ratio", 3.0)),
-                                   nodes=tuple(int(n) for n in nodes))
+                                   nodes=tuple(int(n) for n in nodes), **kw)
 
 
 def bisinusoid_full_contact(speed, direction, ratio, hk, hk_y):

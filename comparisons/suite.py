@@ -87,8 +87,9 @@ Every error is at least 1e-11 × the largest magnitude of its column (round-off)
 Surface cases (``surfaces`` in ``suite.json``: a rigid periodic surface sliding over the
 half-space or a layer, three-dimensional contact) are certified by `compute_surface` under
 SURFACE_RULE: the surface BEM's study over its grids (the same `study`) checked against the
-second opinion each case declares (the independent surface reference, the semi-analytic line
-road for a surface uniform in y, the closed form of full contact; none on a layer), with their
+second opinion each case declares (the independent surface reference, on the half-space or the
+case's layer; the semi-analytic line road for a surface uniform in y; the closed form of full
+contact), with their
 fields on a stated 2-D grid in ``fields/NAME.npz``.
 
 `--check` recomputes every case and exits with status 1 when a certified digit changed: a scalar
@@ -979,16 +980,18 @@ SURFACE_RULE = (
     "its own absolute estimate E_F): the two must agree, |q_R - q_F| <= "
     f"{SAFETY:g} E + E_F, and the certified value is q_R with e = max({SAFETY:g} E, E_F, "
     "|q_R - q_F|), the digits both support; they certify nothing where they disagree or the "
-    "reference failed. A surface uniform in y (line): the certified value is the semi-analytic "
-    "line road's a, with e = |a - q_R| (the finest value when the study has no order), and "
-    "with the surface reference as well e is at least |a - q_F|. Full contact of the "
-    "bi-sinusoid (closed_form): the certified value is the closed form a (each family of ridges "
-    "the line's Appendix B at its speed component), e as for the line road. No second opinion "
-    "(a layer: the surface reference solves the half-space only): q_R with e = "
-    f"{SAFETY:g} E, the BEM's convergence alone. What holds by construction is exact: full "
-    "contact (Delta/h_ref = 1, contact fraction 1), mu_lateral = 0 for a bi-sinusoid sliding "
-    "along an axis (mirror symmetry about V), the number of contact patches where every grid "
-    "and the reference count the same. Fields (pressure, displacement, gap over h_ref) on the "
+    "reference failed. On a layer the reference solves the same layer (the symbol of each mode "
+    "times its own layer factor S(|q| k d, nu), analytic._layer, from Navier's equations). "
+    "A surface uniform in y (line): the certified value is the semi-analytic line road's a, "
+    "with e = |a - q_R| (the finest value when the study has no order), and with the surface "
+    "reference as well e is at least |a - q_F|. Full contact of the bi-sinusoid "
+    "(closed_form): the certified value is the closed form a (each family of ridges the "
+    "line's Appendix B at its speed component), e as for the line road. A case that declares "
+    f"no second opinion: q_R with e = {SAFETY:g} E, the BEM's convergence alone. What holds "
+    "by construction is exact: full contact (Delta/h_ref = 1, contact fraction 1), "
+    "mu_lateral = 0 for a bi-sinusoid sliding along an axis (mirror symmetry about V), the "
+    "number of contact patches where every grid and the reference count the same. Fields "
+    "(pressure, displacement, gap over h_ref) on the "
     f"stated grid of {SURFACE_FIELD_POINTS} x {SURFACE_FIELD_POINTS} panel centres carry an "
     "absolute error per point: the line road's values with the largest |a - BEM(finest N)| at "
     f"the point and its 8 neighbours where it applies, else the finest grid's with {SAFETY:g} x "
@@ -1007,8 +1010,6 @@ def surface_references(case):
             raise SuiteError(f"case {case['name']}: reference {ref!r} is not allowed: one of "
                              f"{', '.join(SURFACE_REFERENCES)}")
         why = None
-        if ref == "surface_reference" and p.get("layer"):
-            why = "the surface reference solves the half-space only"
         if ref in ("line", "closed_form") and (surf.get("kind") != "bisinusoid"
                                                or p.get("layer") or (surf.get("aspect") or 1.0)
                                                != 1.0):

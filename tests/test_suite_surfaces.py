@@ -71,16 +71,20 @@ def test_surface_cases_load_and_cover_what_the_suite_claims(data):
     assert mu[0] < max(mu) > mu[-1]
     kinds = {tuple(suite.surface_references(c)) for c in cases}
     assert {("surface_reference",), ("line", "surface_reference"),
-            ("closed_form", "surface_reference"), ()} <= kinds
+            ("closed_form", "surface_reference")} <= kinds
     oblique = [c for c in cases if c["point"]["direction"] % 90.0 and "mu_lateral" in
                c["certified"]["scalars"] and not c["certified"]["exact"]["full_contact"]]
     assert oblique and all(abs(c["certified"]["scalars"]["mu_lateral"]["value"]) > 0.01
                            for c in oblique)
     rough = [c for c in cases if c["point"]["surface"]["kind"] == "self_affine"]
     assert rough and all(c["certified"]["exact"].get("n_patches", 0) > 1 for c in rough)
+    # a layer is certified by two codes: the surface reference solves the same layer
     layered = [c for c in cases if c["point"].get("layer")]
-    assert layered and all(not suite.surface_references(c) and "alone" in c["note"]
-                           and c["certified"]["method"] == "bem convergence" for c in layered)
+    assert layered and all(suite.surface_references(c) == ("surface_reference",)
+                           and c["certified"]["method"] == "bem convergence + surface reference"
+                           and c["certified"]["reference"]["success"]
+                           and all(r["agree"] for r in c["certified"]["scalars"].values())
+                           for c in layered)
 
 
 def test_each_digit_is_what_the_rule_gives_from_the_stored_evidence(data):
@@ -225,7 +229,7 @@ def test_a_disagreement_with_the_reference_certifies_nothing(data, monkeypatch):
 
 @pytest.mark.parametrize("change, reference, why", [
     ({"layer": {"thickness_over_wavelength": 0.5, "foundation": "bonded", "nu": 0.5}},
-     "surface_reference", "the surface reference solves the half-space only"),
+     "closed_form", "over the half-space"),
     ({"surface": {"kind": "bisinusoid", "hk": 1.0, "hk_y": 0.5}}, "line", "uniform in y"),
     ({"surface": {"kind": "self_affine", "hurst": 0.8, "rolloff": 2.0, "short_cutoff": 8.0,
                   "rms_slope": 0.2, "seed": 0}}, "closed_form", "a bi-sinusoid"),
@@ -282,7 +286,7 @@ def test_export_writes_a_surface_case_a_third_code_can_run(tmp_path, data):
             np.testing.assert_array_equal(z["pressure"], suite.case_fields(c)["pressure"])
             assert float(z["direction"]) == c["point"]["direction"]
     lay = json.loads((tmp_path / names[1] / "inputs.json").read_text(encoding="utf-8"))
-    assert "none independent" in lay["reference_road"]
+    assert "surface reference" in lay["reference_road"]
     assert lay["layer"]["thickness_over_Lx"] == 0.5 and lay["layer"]["foundation"] == "bonded"
 
 
@@ -291,4 +295,5 @@ def test_list_names_the_surface_cases_and_their_body(capsys):
                      "surface-bisinusoid-v1"]) == 0
     out = capsys.readouterr().out
     assert "| surface-bisinusoid-v1 |" in out and "| half-space | 6 | 7 |" in out
-    assert "layer d/Lx = 0.5 (kd = 3.142), bonded, ν = 0.5 | 4 | 5 | bem convergence |" in out
+    assert ("layer d/Lx = 0.5 (kd = 3.142), bonded, ν = 0.5 | 4 | 5 | bem convergence + "
+            "surface reference |") in out

@@ -321,3 +321,145 @@ def test_bad_inputs_are_refused_by_name(kwargs, name):
     args.update(kwargs)
     with pytest.raises(ValueError, match=rf"^{name}=.* is not allowed: "):
         sr.solve(**args)
+
+
+# --------------------------------------------------------------------------------------------
+# A layer on a rigid foundation: mode q's symbol times S(|q| k d, ν)
+# --------------------------------------------------------------------------------------------
+BONDED = {"thickness_over_wavelength": 0.5, "foundation": "bonded", "nu": 0.5}
+
+
+def test_no_layer_is_the_half_space_and_its_record_is_unchanged():
+    args = dict(load=0.3, speed=1.0, heights=BISINUSOID, nodes=(16, 32, 64))
+    plain_ = sr.solve(**args)
+    none = sr.solve(**args, layer=None)
+    assert none.layer is None and none.mean_displacement is None and none.approach is None
+    assert "layer" not in none.diagnostics and "mean_displacement" not in none.error_estimate
+    a, b = plain_.as_dict(), none.as_dict()
+    a.pop("elapsed"), b.pop("elapsed")
+    for lv in a["levels"] + b["levels"]:
+        lv.pop("seconds")
+    assert a == b and not {"layer", "mean_displacement", "approach"} & set(a)
+    assert np.array_equal(plain_.pressure, none.pressure)
+
+
+@pytest.mark.parametrize("layer", [
+    {"thickness": 25.0, "foundation": "bonded", "nu": 0.3},
+    {"thickness_over_wavelength": 10.0, "foundation": "frictionless", "nu": 0.5},
+])
+def test_a_thick_layer_is_the_half_space(layer):
+    """From k d = 25 on every mode's S is 1 exactly (|q| ≥ 1): the half-space bit for bit."""
+    args = dict(load=0.3, speed=1.0, heights=BISINUSOID, direction=20.0, nodes=(16, 32, 64))
+    half = sr.solve(**args)
+    thick = sr.solve(**args, layer=layer)
+    assert thick.success
+    for key in sr.SCALAR_KEYS + ("load", "tau_f", "separation"):
+        assert getattr(thick, key) == getattr(half, key), key
+    for key in ("pressure", "gap", "displacement"):
+        assert np.array_equal(getattr(thick, key), getattr(half, key)), key
+    assert all(thick.error_estimate[k] == v for k, v in half.error_estimate.items())
+    # its uniform mode still compresses: k v̄0 = C (k d) J0 p̃ over k h_ref (h_ref = 2h here)
+    kd = layer.get("thickness") or 2.0 * math.pi * layer["thickness_over_wavelength"]
+    nu = layer["nu"]
+    c = 1.0 if layer["foundation"] == "frictionless" else (1 - 2 * nu) / (1 - nu) ** 2
+    assert thick.mean_displacement == pytest.approx(c * kd * 0.3 / 2.0, rel=ROUNDOFF)
+    assert thick.approach == pytest.approx(thick.penetration + thick.mean_displacement,
+                                           rel=ROUNDOFF)
+    assert thick.layer["thickness"] == pytest.approx(kd, rel=ROUNDOFF)
+    assert thick.diagnostics["layer"]["approach"] == thick.approach
+    assert thick.as_dict()["mean_displacement"] == thick.mean_displacement
+
+
+@pytest.mark.parametrize("layer, material, direction", [
+    ({"thickness": 0.4, "foundation": "bonded", "nu": 0.3}, (1.0, (0.4, 0.3), (0.5, 3.0)), 37.0),
+    ({"thickness_over_wavelength": 0.1, "foundation": "frictionless", "nu": 0.2},
+     (2.0, (1.5,), (0.2,)), -120.0),
+    (BONDED, (1.0, (2.0 / 3.0,), (1.0,)), 0.0),
+])
+def test_full_contact_on_a_layer_is_the_closed_form(layer, material, direction):
+    """σ_q = z_q/(Ĉ(q) S(|q| k d)), the friction Σ (q·ê) Im(Ĉ S)|σ_q|², the mean compression
+    C (k d) J0 p̃."""
+    from analytic._layer import layer_factor, uniform_compliance
+    # heights well below d and a load whose compression stays short of the foundation
+    harmonics, aspect, speed, load = {(1, 0): 0.01, (0, 1): 0.007j, (1, 1): 0.003}, 1.3, 1.5, 0.3
+    res = sr.solve(load=load, speed=speed, heights=harmonics, aspect=aspect,
+                   direction=direction, material=material, nodes=(16, 32), layer=layer)
+    assert res.success and res.full_contact and res.contact_fraction == 1.0
+    kd = layer.get("thickness") or 2.0 * math.pi * layer["thickness_over_wavelength"]
+    th = math.radians(direction)
+    e, ep = (math.cos(th), math.sin(th)), (-math.sin(th), math.cos(th))
+    xx, yy = np.meshgrid(res.x, res.y, indexing="ij")
+    sigma = np.full(xx.shape, load)
+    tau = lateral = 0.0
+    for (m, n), c in harmonics.items():
+        q = (m, n / aspect)
+        s = layer_factor(math.hypot(*q) * kd, layer["nu"], layer["foundation"])
+        assert 0.0 < s < 1.0
+        c_hat = 2.0 * s / math.hypot(*q) * _jstar(q[0] * e[0] + q[1] * e[1], speed, *material)
+        sigma += (c / c_hat * np.exp(2j * math.pi * (m * xx + n * yy / aspect))).real
+        power = abs(c) ** 2 / (2.0 * abs(c_hat) ** 2)
+        tau += (q[0] * e[0] + q[1] * e[1]) * c_hat.imag * power
+        lateral -= (q[0] * ep[0] + q[1] * ep[1]) * c_hat.imag * power
+    assert np.max(np.abs(res.pressure - sigma)) <= ROUNDOFF * np.max(sigma)
+    assert res.mu == pytest.approx(tau / load, rel=ROUNDOFF, abs=ROUNDOFF)
+    assert res.mu_lateral == pytest.approx(lateral / load, rel=ROUNDOFF, abs=ROUNDOFF)
+    assert res.diagnostics["mu_direct"] == pytest.approx(res.mu, rel=ROUNDOFF, abs=ROUNDOFF)
+    mean = uniform_compliance(layer["nu"], layer["foundation"]) * kd * material[0] * load \
+        / res.h_ref
+    assert res.mean_displacement == pytest.approx(mean, rel=ROUNDOFF, abs=ROUNDOFF)
+    assert res.approach == pytest.approx(1.0 + mean, rel=ROUNDOFF)
+
+
+def test_the_bisinusoid_on_a_bonded_layer_agrees_with_the_bem():
+    """hk = 1, p̃ = 0.3, V/V0 = 1 on a bonded incompressible layer d/Lx = 0.5: the surface BEM
+    on 256 panels and this reference on 64 … 256 agree within the sum of their estimates."""
+    import bem
+    ref = sr.solve(load=0.3, speed=1.0, heights=BISINUSOID, layer=BONDED)
+    got = bem.solve_surface(load=0.3, speed=1.0, nodes=256, layer=bem.Layer(
+        thickness_over_wavelength=0.5, foundation="bonded", nu=0.5))
+    assert ref.success and got.success
+    # a layer is stiffer than the half-space: less penetration at the same load
+    half = sr.solve(load=0.3, speed=1.0, heights=BISINUSOID, nodes=(16, 32, 64))
+    assert ref.penetration < half.penetration
+    for key in ("mu", "penetration", "contact_fraction"):
+        a, b = getattr(ref, key), getattr(got, key)
+        ea, eb = ref.error_estimate[key], got.error_estimate[key]
+        if key != "contact_fraction":        # relative estimates
+            ea, eb = ea * abs(a), eb * abs(b)
+        assert abs(a - b) <= ea + eb, (key, a, b, ea, eb)
+    assert ref.n_patches == got.n_patches == 1
+    lay = got.diagnostics["layer"]
+    assert ref.mean_displacement == lay["mean_displacement"] == 0.0     # C = 0 at ν = ½
+    assert abs(ref.approach - lay["approach"]) <= (ref.error_estimate["approach"]
+                                                   + got.error_estimate["penetration"])
+
+
+@pytest.mark.parametrize("layer, name", [
+    ("thick", "layer"),
+    ({"thickness": 1.0, "foundation": "bonded"}, "layer"),
+    ({"thickness": 1.0, "thickness_over_wavelength": 0.2, "foundation": "bonded", "nu": 0.3},
+     "layer"),
+    ({"thickness": 1.0, "foundation": "bonded", "nu": 0.3, "E": 1.0}, "layer"),
+    ({"thickness": -1.0, "foundation": "bonded", "nu": 0.3}, "layer['thickness']"),
+    ({"thickness": math.inf, "foundation": "bonded", "nu": 0.3}, "layer['thickness']"),
+    ({"thickness_over_wavelength": 0.0, "foundation": "bonded", "nu": 0.3},
+     "layer['thickness_over_wavelength']"),
+    ({"thickness_over_wavelength": 1e-120, "foundation": "bonded", "nu": 0.5},
+     "layer['thickness_over_wavelength']"),
+    ({"thickness": 1.0, "foundation": "glued", "nu": 0.3}, "layer['foundation']"),
+    ({"thickness": 1.0, "foundation": "bonded", "nu": 0.7}, "layer['nu']"),
+    ({"thickness": 1.0, "foundation": "bonded", "nu": "half"}, "layer['nu']"),
+])
+def test_bad_layers_are_refused_by_name(layer, name):
+    import re
+    with pytest.raises(ValueError, match=rf"^{re.escape(name)}=.* is not allowed: "):
+        sr.solve(load=0.3, speed=1.0, heights=BISINUSOID, nodes=(16, 32), layer=layer)
+
+
+def test_a_penetration_through_the_layer_is_refused():
+    """The approach is at least Δ: Δ/h_ref ≥ k d/(k h_ref) puts the crest on the foundation."""
+    layer = {"thickness": 0.5, "foundation": "bonded", "nu": 0.5}     # k h_ref = 2
+    with pytest.raises(ValueError, match=r"^penetration=0\.3 is not allowed: "):
+        sr.solve(penetration=0.3, speed=1.0, heights=BISINUSOID, nodes=(16, 32), layer=layer)
+    res = sr.solve(penetration=0.2, speed=1.0, heights=BISINUSOID, nodes=(16, 32), layer=layer)
+    assert res.success and res.approach == res.penetration
