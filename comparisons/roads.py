@@ -73,6 +73,13 @@ def _bem_kwargs(spec, problem):
         kw["profile"] = profile
     else:
         kw["hk"] = spec["hk"]
+    return _material_and_mesh(kw, spec, material)
+
+
+def _material_and_mesh(kw, spec, material):
+    """``kw`` with the material (``material``, else the standard linear solid of the spec's
+    ``ratio``), the mesh options the spec sets and its layer: what bem.solve and
+    bem.solve_surface take alike."""
     if material is not None:
         kw["material"] = material
     else:
@@ -213,16 +220,7 @@ def _surface_kwargs(spec, material, parsed):
     linear solid of its ``ratio``; ``parsed``: a surface file's Surface, when read)."""
     kw = dict(_controls(spec), speed=spec["speed"], direction=spec["direction"],
               surface=surface(spec["surface"], parsed))
-    if material is not None:
-        kw["material"] = material
-    else:
-        kw["ratio"] = spec["ratio"]
-    for name in ("nodes", "rtol", "max_nodes"):
-        if spec.get(name) is not None:
-            kw[name] = spec[name]
-    if spec.get("layer") is not None:
-        kw["layer"] = layer(spec["layer"])
-    return kw
+    return _material_and_mesh(kw, spec, material)
 
 
 def validate_surface(spec, material, parsed):
