@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from . import _assemble
 from ._assemble import (ROUNDOFF, _full_patch, _patches, _window_friction, counted_contact,
                         edge_lag_reach, edge_lags)
@@ -31,6 +33,11 @@ PANEL_MEMORY_RESIDUAL = 0.03
 #: the remainder of the first-order memory law bounded by this times L_eff/a (measured at most
 #: 0.84 L/a on the standard linear solid, `_assemble._lag_friction`)
 LAG_LAW_SAFETY = 1.5
+#: a partial contact whose deepest gap is below this many times the validity gate's round-off
+#: (1e-12 h) gets no estimate: just below the full-contact load (3e-8 below p_FC) gaps of
+#: 8e-12 h and 3e-13 h gave ka 1e-6 and 3.5e-5 off, the grids agreeing to 1e-7; at 9e-8 below,
+#: 2.5e-11 h, the answers lay within their estimates
+MIN_GAP_DEPTH = 20.0
 #: keys of the error estimate: relative for these, absolute for the others
 RELATIVE_KEYS = ("penetration", "tau_f", "mu")
 ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f", "mu")
@@ -75,6 +82,8 @@ def _level_scalars(res, grid, profile, material, speed, amp):
         out.update(tau_f_law=tau_law, mu_law=tau_law / mean_p if mean_p > 0 else math.nan,
                    lag_law=LAG_LAW_SAFETY * l_eff / half)
     frac = float(sum(p.width for p in patches))
+    # the deepest gap, in units of the validity gate's round-off (`MIN_GAP_DEPTH`)
+    out["gap_depth"] = float(np.max(res["gap"])) / (ROUNDOFF * grid.scale)
     out.update(contact_fraction=frac, npatch=len(patches),
                min_panels=min(p.panels for p in patches))
     if len(patches) == 1:
@@ -203,6 +212,11 @@ def _estimate(scalars, material, speed, layer=None):
         if across < MIN_LAYER_PANELS:
             reason = (f"the layer's thickness spans {across:.2g} panels at N={n0} (at least "
                       f"{MIN_LAYER_PANELS:g} are needed)")
+    depth = run[0][1].get("gap_depth")
+    if reason is None and not full and depth is not None and depth < MIN_GAP_DEPTH:
+        reason = (f"the deepest gap is {depth:.2g} times the validity gate's round-off at "
+                  f"N={run[0][0]} (at least {MIN_GAP_DEPTH:g} are needed: the edges are "
+                  "fitted on gaps at round-off)")
     shift = 0.0 if full else _unresolved_memory(material, speed, n0, a.get("panels"))
     note = _choose_friction_form(run, est)
     if shift > 0.0:

@@ -371,3 +371,19 @@ def test_just_below_full_contact_is_answered_within_its_estimate():
     for key, err in _true(r, ref).items():
         # the two roads agree to about 1e-11 on mu: below that the reference's own rounding
         assert err <= r.error_estimate[key] + 1e-10, (key, err, r.error_estimate[key])
+
+
+def test_a_gap_at_round_off_gives_no_estimate():
+    """3e-8 below p_FC the deepest gap is a few times the validity gate's 1e-12 h and the grids
+    agree on edges that are round-off (ka 1.1e-6 and 3.5e-5 off under estimates of 9e-7 and
+    1.4e-7): below MIN_GAP_DEPTH times that round-off the estimate is not trusted."""
+    from bem._estimate import MIN_GAP_DEPTH, _estimate, _level_scalars
+    scalars = []
+    for n in (1024, 2048, 4096):
+        res, grid, profile, material, load = _near_full_contact_state(n)
+        scalars.append((n, _level_scalars(res, grid, profile, material, 1.0, 1.0)))
+    assert scalars[-1][1]["gap_depth"] > 1e3 * MIN_GAP_DEPTH  # 1e-4 below: gaps of 1e-7 h
+    assert _estimate(scalars, material, 1.0)[1] is None
+    scalars[-1][1]["gap_depth"] = 0.5 * MIN_GAP_DEPTH
+    est, reason, _ = _estimate(scalars, material, 1.0)
+    assert reason is not None and "round-off" in reason
