@@ -751,9 +751,9 @@ def test_export_and_list_state_the_layer(tmp_path, capsys, data):
 # ---------------------------------------------------------------------------- the whole suite
 @pytest.mark.slow
 def test_the_whole_suite_check_passes(tmp_path):
-    """Every case recomputed (about four minutes on one core: the five Fourier-referenced broad
-    spectra take 15-30 s each, the Fourier reference a third of it; the six layer cases half a
-    minute together)."""
-    res = suite.check(out=tmp_path, log=lambda s: None)
+    """Every case recomputed, in two processes (the cases are independent; in one, about four
+    minutes for the line's cases, the five Fourier-referenced broad spectra 15-30 s each, and
+    about four more for the eight surface cases, their 1024² grids and the surface reference)."""
+    res = suite.check(out=tmp_path, log=lambda s: None, workers=2)
     assert res["ok"], [(r["name"], r["changed"]) for r in res["cases"] if r["changed"]]
     assert len(res["cases"]) == len(suite.case_names())
