@@ -250,3 +250,37 @@ def check_grid(x, option="--fields", name="<fields>", widths=None):
         raise bad_input(option, name, f"x_over_lambda is not a uniform grid over one period "
                         f"(spacing × M − 1 reaches {spread:.2e})",
                         "x_j = x_0 + j/M, j = 0..M−1, increasing")
+
+
+def count_patches(contact):
+    """Contact patches of a surface's grid: points in contact connected through their four
+    neighbours, the grid periodic (components that meet across the cell's edges are one patch).
+
+    Parameters
+    ----------
+    contact : array_like of bool, shape (nx, ny)
+
+    Returns
+    -------
+    int
+        0 without contact, 1 in full contact.
+    """
+    from scipy import ndimage
+
+    c = np.asarray(contact, dtype=bool)
+    labels, n = ndimage.label(c)  # 4-connectivity: the default cross in 2-D
+    parent = list(range(n + 1))
+
+    def root(a):
+        while parent[a] != a:
+            parent[a] = parent[parent[a]]
+            a = parent[a]
+        return a
+
+    for a, b in ((labels[-1, :], labels[0, :]), (labels[:, -1], labels[:, 0])):
+        both = (a > 0) & (b > 0)
+        for la, lb in zip(a[both].tolist(), b[both].tolist()):
+            ra, rb = root(la), root(lb)
+            if ra != rb:
+                parent[max(ra, rb)] = min(ra, rb)
+    return len({root(k) for k in range(1, n + 1)})

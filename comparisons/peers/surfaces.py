@@ -86,6 +86,7 @@ import numpy as np
 from viscosine.checks import bad, integer, real, series
 
 from ..convergence import richardson
+from ..fields import count_patches
 from .contactmechanics import _import_contactmechanics
 from .tamaas import (_E_TAMAAS, _ESTAR0, _NU, CELLS_PER_STEP, _change, _import_tamaas, _order,
                      _SteadyRun, _stepping, _steps_per_period, _tail, _verdict)
@@ -207,38 +208,6 @@ def bisinusoid(nodes, hk=1.0):
 
 
 # ----------------------------------------------------------------------------- measuring
-def count_patches(contact):
-    """Contact patches: nodes in contact connected through their four neighbours, periodic.
-
-    Parameters
-    ----------
-    contact : ndarray of bool, shape (nx, ny)
-
-    Returns
-    -------
-    int
-        0 without contact, 1 in full contact.
-    """
-    from scipy import ndimage
-
-    contact = np.asarray(contact, dtype=bool)
-    labels, count = ndimage.label(contact)  # 4-connectivity: the default cross in 2-D
-    parent = list(range(count + 1))
-
-    def root(i):
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
-    # the periodic grid joins the first and last rows, and the first and last columns
-    for a, b in ((labels[0, :], labels[-1, :]), (labels[:, 0], labels[:, -1])):
-        for i, j in zip(a.tolist(), b.tolist()):
-            if i and j:
-                parent[root(i)] = root(j)
-    return len({root(i) for i in range(1, count + 1)})
-
-
 def _slope(u, axis, length):
     """∂u/∂(x or y) along ``axis`` by the spectral derivative (period ``length``), the Nyquist
     mode dropped (it has no derivative on the grid)."""

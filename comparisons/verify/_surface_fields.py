@@ -33,11 +33,10 @@ import math
 from pathlib import Path
 
 import numpy as np
-from scipy import ndimage
 
 from .. import roads
 from .._errors import bad_input
-from ..fields import MIN_POINTS, true_runs
+from ..fields import MIN_POINTS, count_patches, true_runs
 
 #: contact points: σ > CONTACT · max σ (as on the line)
 CONTACT = 1e-9
@@ -182,27 +181,6 @@ def contact_area(pressure, gap=None):
     ax, ex = _area_along(contact, s2, g23, 0)
     ay, ey = _area_along(contact, s2, g23, 1)
     return (ax * ex + ay * ey) / (ex + ey) if ex + ey else 0.5 * (ax + ay)
-
-
-def count_patches(contact):
-    """The 4-connected components of the contact points on the periodic grid."""
-    c = np.asarray(contact, bool)
-    labels, n = ndimage.label(c)
-    parent = list(range(n + 1))
-
-    def root(a):
-        while parent[a] != a:
-            parent[a] = parent[parent[a]]
-            a = parent[a]
-        return a
-
-    # components that meet across the cell's edges are one patch
-    for a, b in ((labels[-1, :], labels[0, :]), (labels[:, -1], labels[:, 0])):
-        for la, lb in zip(a[(a > 0) & (b > 0)], b[(a > 0) & (b > 0)]):
-            ra, rb = root(int(la)), root(int(lb))
-            if ra != rb:
-                parent[max(ra, rb)] = min(ra, rb)
-    return len({root(k) for k in range(1, n + 1)})
 
 
 def scalars_from_fields(fields, point, surf):
