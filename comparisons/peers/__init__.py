@@ -12,6 +12,10 @@ It shares no numerics with either road; only `comparisons` compares them.
   (bonded) and its Polonsky–Keer contact solver: the layer of `bem` in the elastic limit,
   mode by mode and in contact (``docs/layers.md`` §8; same extra).  Elastic only, so it is not
   a ``verify --peer``.
+* :mod:`comparisons.peers.surfaces` — on rigid periodic surfaces (three-dimensional contact):
+  Tamaas's and ContactMechanics' elastic Polonsky–Keer solvers on the project's grid, and
+  Tamaas's transient viscoelastic solver with the surface moved along a grid axis until the
+  sliding is steady, extrapolated in the time step (``docs/surfaces.md``; same extra).
 
 The third-party libraries are imported lazily, inside the functions that need them, so this
 package imports without them.
