@@ -132,9 +132,9 @@ class SurfaceResult:
     residuals, levels, diagnostics : mapping, tuple, mapping
         The residuals of the answer (complementarity, gaps, load balance, the Krylov
         residual, and ``friction_mismatch``: the dissipation and direct forms of μ, a
-        discretisation indicator), the grids solved ((nx, ny, nit, status, FFT pairs)), and
-        what else the solver says (``fft_pairs``: the transform pairs of each grid, the
-        measurements included).
+        discretisation indicator), the grids solved ((nx, ny, nit, status, FFT pairs: the
+        transform pairs of the grid, its measurements included)), and what else the solver
+        says (``memory_lengths``, a layer's ``layer``).
     """
 
     success: bool

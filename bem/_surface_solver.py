@@ -401,9 +401,7 @@ def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
     if status == CONVERGED and len(set(counts)) > 1:
         warnings.append("the number of contact patches changes with the grid (" +
                         ", ".join(str(c) for c in counts) + ", coarse to fine)")
-    diagnostics = {"grids": [[lv[0], lv[1]] for lv in levels],
-                   "fft_pairs": [lv[4] for lv in levels],
-                   "memory_lengths": [p["speed"] * t / (2.0 * math.pi) for _, t in
+    diagnostics = {"memory_lengths": [p["speed"] * t / (2.0 * math.pi) for _, t in
                                       p["material"].terms]}
     if p["layer"] is not None:
         lay = p["layer"]

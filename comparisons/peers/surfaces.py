@@ -89,7 +89,7 @@ from ..convergence import richardson
 from ..fields import count_patches
 from .contactmechanics import _import_contactmechanics
 from .tamaas import (_E_TAMAAS, _ESTAR0, _NU, CELLS_PER_STEP, _change, _import_tamaas, _order,
-                     _SteadyRun, _stepping, _steps_per_period, _tail, _verdict)
+                     _SteadyRun, _stepping, _steps_per_period, _verdict, steadiness)
 
 _TWO_PI = 2.0 * math.pi
 
@@ -455,9 +455,7 @@ def _run_steady(tm, z, h_ref, aspect, motion, stepping, v):
         steady, tail = False, math.inf
         if prev is not None:
             history.append(_change(prev, snap, h_ref))
-            tail = _tail(history)
-            steady = (history[-1] <= 10.0 * v["tolerance"]
-                      or (history[-1] <= v["steady_rtol"] and tail <= v["steady_rtol"]))
+            steady, tail = steadiness(history, v)
             if steady:
                 break
         prev = snap

@@ -515,13 +515,20 @@ def _periods_to_steady(model, solver, surface, base, v, stepping, h):
         steady, tail = False, math.inf
         if prev is not None:
             history.append(_change(prev, snap, h))
-            tail = _tail(history)
-            steady = (history[-1] <= 10.0 * v["tolerance"]
-                      or (history[-1] <= v["steady_rtol"] and tail <= v["steady_rtol"]))
+            steady, tail = steadiness(history, v)
             if steady:
                 break
         prev = snap
     return _SteadyRun(snap, history, steps, period_no, steady, tail, worst)
+
+
+def steadiness(history, v):
+    """(steady, tail) after a period whose change over the previous one is ``history[-1]``:
+    steady when that change is at the solver's tolerance, or it and the tail of the geometric
+    series the changes decay by (`_tail`) are below ``v["steady_rtol"]``."""
+    tail = _tail(history)
+    return (history[-1] <= 10.0 * v["tolerance"]
+            or (history[-1] <= v["steady_rtol"] and tail <= v["steady_rtol"])), tail
 
 
 def _one_period(solver, surface, base, stepping, steps, target):
