@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 
 from viscosine.checks import bad, real, reals, series
+from viscosine.materials import read_creep
 
 
 # --------------------------------------------------------------------------
@@ -411,23 +412,13 @@ def read_prony(path) -> Prony:
 
     The ``J0`` line is required and comes first; there may be no terms (an
     elastic material).  J(t) = J0 - sum_i J_i exp(-t/tau_i), tau_i are
-    retardation (creep) times.  A relaxation-form file (first line ``E_r <value>``,
-    relaxation times; `viscosine.materials.read_relaxation`) is refused here, by name.  The file is read as UTF-8 text; a binary, non-UTF-8 or
-    empty file, or a non-finite value, is refused with a ValueError naming the file.
+    retardation (creep) times.  The format is read by `viscosine.materials.read_creep`, where
+    every material file format lives; a relaxation-form file (first line ``E_r <value>``) is
+    refused there, by name.  A binary, non-UTF-8 or empty file, or a non-finite value, is
+    refused with a ValueError naming the file.
 
     Returns
     -------
     Prony
     """
-    rows = _rows(path, "prony")
-    if rows[0][0].lower() in ("e_r", "er"):  # the relaxation twin of this format
-        raise bad("prony", str(path), "a creep series (first line 'J0 <value>'); this is a "
-                  "relaxation series (first line 'E_r'): convert it exactly with "
-                  "viscosine.materials.read_relaxation(path).creep(), or give it to --material")
-    if rows[0][0].lower() != "j0" or len(rows[0]) != 2:
-        raise bad("prony", str(path), "a first line 'J0 <value>' then lines 'J_i tau_i'")
-    if any(len(r) != 2 for r in rows[1:]):
-        raise bad("prony", str(path), "exactly two numbers 'J_i tau_i' per term line")
-    (j0,) = _numbers("prony", path, rows[0][1:])
-    terms = [tuple(_numbers("prony", path, r)) for r in rows[1:]]
-    return Prony(j0, tuple(t[0] for t in terms), tuple(t[1] for t in terms))
+    return Prony(*read_creep(path, option="prony"))
