@@ -22,9 +22,9 @@ def solve_si(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_press
     E0, Einf : float
         Relaxed and instantaneous Young's moduli [Pa], Einf > E0 (eq. 2.3: 1/E∞ = 1/E0 − 1/E1).
     tau_creep, tau_relax : float
-        Exactly one time of the solid [s]: its creep (retardation) time τ of eq. (2.3)
-        (``tau`` is the older name of ``tau_creep``), or its relaxation time τ_R = τ E0/E∞,
-        converted exactly to τ = τ_R E∞/E0.  The speed group is V τ k with the creep time.
+        Exactly one time of the solid [s]: its creep (retardation) time τ of eq. (2.3), or its
+        relaxation time τ_R = τ E0/E∞, converted exactly to τ = τ_R E∞/E0.  A bare ``tau`` is
+        refused (ValueError naming the two).  The speed group is V τ k with the creep time.
     nu : float
         Poisson's ratio, −1 < ν ≤ 0.5.
     wavelength, amplitude : float

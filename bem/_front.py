@@ -71,9 +71,9 @@ def solve_si(*, nu, wavelength, speed, amplitude=None, heights=None, material=No
         Instead of ``material``, the standard linear solid of eq. (2.3): relaxed and
         instantaneous moduli [Pa], Einf > E0.
     tau_creep, tau_relax : float, optional
-        With E0, Einf, exactly one time of the solid [s]: its creep (retardation) time τ
-        (``tau`` is the older name of ``tau_creep``) or its relaxation time τ_R = τ E0/Einf,
-        converted exactly (τ = τ_R Einf/E0).  The dimensionless speed is V τ k.
+        With E0, Einf, exactly one time of the solid [s]: its creep (retardation) time τ or its
+        relaxation time τ_R = τ E0/Einf, converted exactly (τ = τ_R Einf/E0).  The
+        dimensionless speed is V τ k.  A bare ``tau`` is refused (ValueError naming the two).
     mean_pressure, penetration : float
         Exactly one: p∞ [Pa] or Δ [m], 0 < Δ ≤ h.
     thickness : float, optional
@@ -226,8 +226,9 @@ def solve_surface_si(*, nu, length, speed, heights=None, surface=None, aspect=No
         Instead of ``heights``: a surface in the conventions' units (heights k z).
     aspect : float, optional
         Ly/Lx of ``heights`` (default ny/nx: square panels).
-    material, E0, Einf, tau_creep, tau_relax, tau
-        As `bem.solve_si`: a `viscosine.materials.Maxwell` series, or the standard linear solid.
+    material, E0, Einf, tau_creep, tau_relax
+        As `bem.solve_si` (a bare ``tau`` refused): a `viscosine.materials.Maxwell` series, or
+        the standard linear solid.
     mean_pressure, penetration : float
         Exactly one: p∞ [Pa] over the cell, or Δ [m], 0 < Δ ≤ h_ref.
     direction : float

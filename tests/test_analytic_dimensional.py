@@ -9,13 +9,13 @@ from analytic import solve_si
 from viscosine import Fields, SIResult
 from conftest import ROUNDOFF
 
-BASE = dict(E0=5e6, Einf=15e6, tau=2e-3, nu=0.45, wavelength=1e-3, amplitude=1.5e-4, speed=0.05)
+BASE = dict(E0=5e6, Einf=15e6, tau_creep=2e-3, nu=0.45, wavelength=1e-3, amplitude=1.5e-4, speed=0.05)
 
 
 def _scaled(L, S, T):
     """The same physical problem in units where length ×L, stress ×S, time ×T."""
     b = BASE
-    return dict(E0=b["E0"] * S, Einf=b["Einf"] * S, tau=b["tau"] * T, nu=b["nu"],
+    return dict(E0=b["E0"] * S, Einf=b["Einf"] * S, tau_creep=b["tau_creep"] * T, nu=b["nu"],
                 wavelength=b["wavelength"] * L, amplitude=b["amplitude"] * L,
                 speed=b["speed"] * L / T)
 
@@ -51,14 +51,14 @@ def test_si_matches_the_dimensionless_groups():
     r = solve_si(**BASE, mean_pressure=1e6)
     k = 2 * math.pi / BASE["wavelength"]
     estar = BASE["E0"] / (1 - BASE["nu"] ** 2)
-    sol = analytic.solve(load=1e6 / estar, speed=BASE["speed"] * BASE["tau"] * k, ratio=3.0, hk=BASE["amplitude"] * k)
+    sol = analytic.solve(load=1e6 / estar, speed=BASE["speed"] * BASE["tau_creep"] * k, ratio=3.0, hk=BASE["amplitude"] * k)
     assert r.contact_halfwidth * k == pytest.approx(sol.ka, rel=ROUNDOFF)
     assert r.friction_coefficient == pytest.approx(sol.mu, rel=ROUNDOFF)
 
 
 @pytest.mark.parametrize("kw,name", [
     (dict(E0=-1.0), "E0"), (dict(E0=float("nan")), "E0"), (dict(Einf=4e6), "Einf"),
-    (dict(tau=0.0), "tau"), (dict(nu=0.6), "nu"), (dict(nu=-1.0), "nu"),
+    (dict(tau_creep=0.0), "tau_creep"), (dict(nu=0.6), "nu"), (dict(nu=-1.0), "nu"),
     (dict(wavelength=0.0), "wavelength"), (dict(amplitude=float("inf")), "amplitude"),
     (dict(speed=-1.0), "speed"),
 ])

@@ -115,7 +115,7 @@ def test_sweep_refuses_bad_input_before_solving():
         analytic.sweep(load=[0.3], speed=[1.0], ratio=1.0)
 
 
-BASE = dict(E0=5e6, Einf=15e6, tau=2e-3, nu=0.45, wavelength=1e-3, amplitude=1.5e-4, speed=0.05)
+BASE = dict(E0=5e6, Einf=15e6, tau_creep=2e-3, nu=0.45, wavelength=1e-3, amplitude=1.5e-4, speed=0.05)
 
 
 def test_solve_si_returns_an_si_result_with_the_transition():
@@ -123,11 +123,11 @@ def test_solve_si_returns_an_si_result_with_the_transition():
     assert isinstance(r, SIResult) and r.success and isinstance(r.solution, analytic.Solution)
     k = 2 * math.pi / BASE["wavelength"]
     estar = BASE["E0"] / (1 - BASE["nu"] ** 2)
-    w = BASE["speed"] * BASE["tau"] * k
+    w = BASE["speed"] * BASE["tau_creep"] * k
     hk = BASE["amplitude"] * k
     assert r.full_contact_pressure == pytest.approx(analytic.transition_load(w, 3.0, hk) * estar,
                                                     rel=ROUNDOFF)
-    vth = analytic.threshold_speed(1e6 / estar, 3.0, hk) / (BASE["tau"] * k)
+    vth = analytic.threshold_speed(1e6 / estar, 3.0, hk) / (BASE["tau_creep"] * k)
     assert r.threshold_speed == pytest.approx(vth, rel=ROUNDOFF) or r.threshold_speed == vth
     assert r.max_pressure == pytest.approx(r.solution.max_pressure * estar, rel=ROUNDOFF)
     f = r.fields()

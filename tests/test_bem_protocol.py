@@ -253,11 +253,11 @@ def test_sweep_equals_individual_solves():
 
 
 def test_solve_si_is_invariant_under_a_change_of_units():
-    base = dict(E0=1e6, Einf=3e6, tau=0.01, nu=0.5, wavelength=1e-3, amplitude=1e-4,
+    base = dict(E0=1e6, Einf=3e6, tau_creep=0.01, nu=0.5, wavelength=1e-3, amplitude=1e-4,
                 speed=0.05, mean_pressure=2e4)
     a = bem.solve_si(**base, nodes=512)
     # lengths ×10, moduli ×7, times ×3: the same dimensionless problem
-    b = bem.solve_si(E0=7e6, Einf=21e6, tau=0.03, nu=0.5, wavelength=1e-2, amplitude=1e-3,
+    b = bem.solve_si(E0=7e6, Einf=21e6, tau_creep=0.03, nu=0.5, wavelength=1e-2, amplitude=1e-3,
                      speed=0.05 * 10 / 3, mean_pressure=7 * 2e4, nodes=512)
     assert a.success and b.success
     for k in SCALAR_KEYS:

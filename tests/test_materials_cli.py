@@ -220,8 +220,8 @@ def test_si_point_is_the_si_front(capsys):
     assert rec["si"]["speed"] == pytest.approx(0.05, rel=ROUNDOFF)
     assert rec["si_scales"]["tau_ref"] == pytest.approx(0.01, rel=ROUNDOFF)
     a, _ = _point(capsys, "point", "--solver", "analytic", "--load", "2e4", "--speed", "0.05",
-                  *SI, "--E0", "1e6", "--Einf", "3e6", "--tau", "0.01")
-    assert a["si"]["friction_coefficient"] == analytic.solve_si(**sls, tau=0.01).friction_coefficient
+                  *SI, "--E0", "1e6", "--Einf", "3e6", "--tau-creep", "0.01")
+    assert a["si"]["friction_coefficient"] == analytic.solve_si(**sls, tau_creep=0.01).friction_coefficient
     # a DMA curve in SI: moduli from the header's MPa, times in s
     rec, _ = _point(capsys, "point", "--solver", "bem", "--load", "2e5", "--speed", "0.01",
                     "--nodes", "1024", *SI, "--material", SBR)
@@ -235,11 +235,11 @@ def test_si_point_is_the_si_front(capsys):
 
 def test_solve_si_takes_any_material_any_time_and_a_profile_in_metres():
     base = dict(nu=0.5, wavelength=1e-3, speed=0.05, mean_pressure=2e4, nodes=1024)
-    ref = bem.solve_si(E0=1e6, Einf=3e6, tau=0.01, amplitude=1e-4, **base)
+    ref = bem.solve_si(E0=1e6, Einf=3e6, tau_creep=0.01, amplitude=1e-4, **base)
     same = [bem.solve_si(E0=1e6, Einf=3e6, tau_creep=0.01, amplitude=1e-4, **base),
             bem.solve_si(E0=1e6, Einf=3e6, tau_relax=0.01 / 3, amplitude=1e-4, **base),
             bem.solve_si(material=Maxwell(1e6, (2e6,), (0.01 / 3,)), amplitude=1e-4, **base),
-            bem.solve_si(E0=1e6, Einf=3e6, tau=0.01, **base, heights=1e-4 * np.cos(
+            bem.solve_si(E0=1e6, Einf=3e6, tau_creep=0.01, **base, heights=1e-4 * np.cos(
                 2 * np.pi * (np.arange(64) / 64 - 0.5)))]
     for r in same:  # a relaxation time, a Maxwell series, a sampled cosine: round-off apart
         _same_point(r.solution.as_dict(), ref.solution.as_dict())
@@ -258,7 +258,7 @@ def test_solve_si_takes_any_material_any_time_and_a_profile_in_metres():
         with pytest.raises(ValueError, match=pattern):
             bem.solve_si(amplitude=1e-4, **base, **kw)
     with pytest.raises(ValueError, match=r"^amplitude=0\.0001 is not allowed with heights="):
-        bem.solve_si(E0=1e6, Einf=3e6, tau=0.01, amplitude=1e-4, heights=np.ones(8), **base)
+        bem.solve_si(E0=1e6, Einf=3e6, tau_creep=0.01, amplitude=1e-4, heights=np.ones(8), **base)
     with pytest.warns(UserWarning, match=r"decade\(s\) below the measured window"):
         bem.solve_si(material=fit_prony(read_dma(SBR)), amplitude=1e-4,
                      **dict(base, speed=1e-9, mean_pressure=2e5))
@@ -395,12 +395,12 @@ BAD = [
     (["point", "--solver", "analytic", "--load", "0.3", "--speed", "1", "--material", "{prony}"],
      "", "--material is not allowed here: a BEM option"),
     # SI
-    (POINT[:-2] + ["--units", "SI", "--E0", "1e6", "--Einf", "3e6", "--tau", "0.01", "--nu",
+    (POINT[:-2] + ["--units", "SI", "--E0", "1e6", "--Einf", "3e6", "--tau-creep", "0.01", "--nu",
                    "0.5", "--wavelength", "1e-3"], "", "--amplitude is missing"),
     (POINT + ["--units", "SI", "--E0", "1e6", "--Einf", "3e6", "--tau-creep", "0.01",
               "--tau-relax", "0.003", "--nu", "0.5", "--wavelength", "1e-3",
               "--amplitude", "1e-4"], "", "give exactly one time of the standard linear solid"),
-    (POINT + ["--units", "SI", "--E0", "-1e6", "--Einf", "3e6", "--tau", "0.01", "--nu", "0.5",
+    (POINT + ["--units", "SI", "--E0", "-1e6", "--Einf", "3e6", "--tau-creep", "0.01", "--nu", "0.5",
               "--wavelength", "1e-3", "--amplitude", "1e-4"], "", "--E0 -1000000.0 is not allowed"),
     (POINT + ["--units", "SI", "--material", "{dma}", "--nu", "0.5", "--wavelength", "1e-3",
               "--amplitude", "1e-4", "--load", "-3"], "", "--load given twice"),

@@ -590,7 +590,7 @@ def test_si_fields_with_material_and_geometry(tmp_path, capsys):
     lam = 2 * np.pi * h  # hk = 1
     rc, out, err = _run(capsys, "--load", repr(0.3 * E0 / (1 - nu ** 2)),
                         "--speed", repr(1.0 / (0.01 * 2 * np.pi / lam)), "--units", "SI",
-                        "--E0", str(E0), "--Einf", str(3 * E0), "--tau", "0.01", "--nu", str(nu),
+                        "--E0", str(E0), "--Einf", str(3 * E0), "--tau-creep", "0.01", "--nu", str(nu),
                         "--wavelength", repr(lam), "--amplitude", str(h), "--fields", str(path),
                         "--rtol", "1e-3", "--out", str(tmp_path / "rep2"), "--no-figures")
     assert rc == 0, out + err

@@ -3,8 +3,9 @@ dimensionless result turned back into SI.  Nothing here solves anything.
 
 Natural units: lengths 1/k = λ/(2π) (or h), stresses E0/(1 − ν²), times τ (the creep time of the
 standard linear solid, J(t) = 1/E0 − (1/E1) e^{−t/τ}; a relaxation time τ_R of the same solid is
-τ E0/E∞).  The solid's time is given by name: ``tau_creep`` (alias ``tau``) or ``tau_relax``
-(`creep_time`).  For any other material (`material_scales`) the reference modulus E_ref is its
+τ E0/E∞).  The solid's time is given by name, ``tau_creep`` or ``tau_relax`` (`creep_time`); a
+bare ``tau`` is refused, since the two differ by the factor E∞/E0 and a swap shifts every
+speed by it.  For any other material (`material_scales`) the reference modulus E_ref is its
 relaxed modulus and the reference time τ_ref is 1 s, so the speed group is V k × 1 s.
 """
 from __future__ import annotations
@@ -36,25 +37,32 @@ class SIScales:
     given: dict         # the SI inputs each group comes from, as passed (for refusals)
 
 
+#: why a bare ``tau`` is refused, and the two names to choose from (every SI door says it)
+TIME_NAMES = ("tau_creep (the creep, retardation, time of eq. 2.3) or tau_relax (the "
+              "relaxation time, tau_creep E0/Einf) [s]")
+
+
 def creep_time(*, E0, Einf, tau=None, tau_creep=None, tau_relax=None) -> float:
     """The creep (retardation) time τ of the standard linear solid, from the one time given.
 
-    ``tau`` is ``tau_creep`` (its older name); ``tau_relax`` is the relaxation time τ_R, the
-    time over which the stress relaxes under a step of strain, τ_R = τ E0/E∞, so
-    τ = τ_R E∞/E0.  E0 < E∞ are taken as already checked.
+    ``tau_relax`` is the relaxation time τ_R, the time over which the stress relaxes under a
+    step of strain, τ_R = τ E0/E∞, so τ = τ_R E∞/E0.  A bare ``tau`` is refused: which of the
+    two it means cannot be told.  E0 < E∞ are taken as already checked.
 
     Raises
     ------
     ValueError
-        Not exactly one of the three, or a time that is not finite and > 0.
+        ``tau`` given, not exactly one of ``tau_creep`` and ``tau_relax``, or a time that is
+        not finite and > 0.
     """
-    given = {k: v for k, v in (("tau", tau), ("tau_creep", tau_creep), ("tau_relax", tau_relax))
+    if tau is not None:
+        raise ValueError(f"tau={tau!r} is not allowed: which time? give {TIME_NAMES}")
+    given = {k: v for k, v in (("tau_creep", tau_creep), ("tau_relax", tau_relax))
              if v is not None}
     if len(given) != 1:
         shown = ", ".join(f"{k}={v!r}" for k, v in given.items()) or "tau_creep=None"
         raise ValueError(f"{shown} is not allowed: give exactly one time of the standard linear "
-                         "solid, tau_creep (its creep, retardation, time; alias tau) or "
-                         "tau_relax (its relaxation time, tau_creep E0/Einf) [s]")
+                         f"solid, {TIME_NAMES}")
     (name, value), = given.items()
     if name == "tau_relax":
         t = real(name, value, "a finite relaxation time > 0", lambda v: v > 0.0, unit="s")
@@ -66,8 +74,8 @@ def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressur
            penetration=None, tau_creep=None, tau_relax=None) -> SIScales:
     """Validate SI inputs (ValueError naming the parameter, its value and what is allowed).
 
-    The solid's time is exactly one of ``tau_creep`` (alias ``tau``) and ``tau_relax``
-    (`creep_time`); the speed group is V τ k with τ the creep time.
+    The solid's time is exactly one of ``tau_creep`` and ``tau_relax`` (`creep_time`; a bare
+    ``tau`` is refused); the speed group is V τ k with τ the creep time.
     """
     E0 = real("E0", E0, "a finite modulus > 0", lambda v: v > 0.0, unit="Pa")
     Einf = real("Einf", Einf, f"a finite modulus > E0 = {E0!r}", lambda v: v > E0, unit="Pa")

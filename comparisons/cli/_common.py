@@ -56,6 +56,19 @@ class Once(argparse.Action):
         setattr(namespace, self.dest, values)
 
 
+class WhichTime(argparse.Action):
+    """A bare ``--tau``: refused, naming the two times to choose from (a relaxation time taken
+    for a creep time shifts every speed by E∞/E0)."""
+
+    def __init__(self, option_strings, dest, **kw):
+        kw.setdefault("help", argparse.SUPPRESS)
+        super().__init__(option_strings, dest, **kw)
+
+    def __call__(self, parser, namespace, values, option_string=None):
+        parser.error(f"{option_string} {values}: which time? (allowed: --tau-creep [s], the "
+                     "creep time of eq. 2.3, or --tau-relax [s], the relaxation time τ E0/Einf)")
+
+
 def number(text):
     try:
         return float(text)
@@ -185,7 +198,7 @@ def solver_options(p, several):
                         "conventions' dimensionless groups)")
     for names, unit, what in ((("--E0",), "Pa", "relaxed modulus of the standard linear solid"),
                               (("--Einf",), "Pa", "instantaneous (glassy) modulus, > E0"),
-                              (("--tau-creep", "--tau"), "s", "creep (retardation) time τ of "
+                              (("--tau-creep",), "s", "creep (retardation) time τ of "
                                "the solid, eq. (2.3); the speed group is V τ k"),
                               (("--tau-relax",), "s", "relaxation time of the solid, τ E0/Einf "
                                "(instead of --tau-creep)"),
@@ -197,6 +210,7 @@ def solver_options(p, several):
                                "bisinusoid: h of each sinusoid; a FILE fixes its own)")):
         p.add_argument(*names, type=number, action=Once, metavar="X",
                        help=f"--units SI: {what} [{unit}]")
+    p.add_argument("--tau", action=WhichTime, dest="_tau")
 
 
 def surface_options(p):

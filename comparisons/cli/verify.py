@@ -7,6 +7,12 @@ from __future__ import annotations
 
 import argparse
 
+from ._common import WhichTime
+
+#: the solid's two times (exactly one is given; a bare --tau is refused)
+_TIMES = {"tau-creep": ": the creep (retardation) time of eq. (2.3)",
+          "tau-relax": ": the relaxation time, tau_creep E0/Einf (instead of --tau-creep)"}
+
 
 def _float_opt(name):
     def conv(text):
@@ -85,12 +91,13 @@ def add_parser(sub):
     p.add_argument("--units", choices=["conventions", "SI"], default="conventions",
                    help="SI: the fields files in Pa, m, m (with --E0 --nu --amplitude) and, "
                         "without --case, the operating point in SI: --load in Pa (or "
-                        "--penetration in m), --speed in m/s, with --E0 --Einf --tau --nu "
-                        "--wavelength --amplitude")
-    for name, unit in (("E0", "Pa"), ("Einf", "Pa"), ("tau", "s"), ("nu", "-"),
-                       ("wavelength", "m"), ("amplitude", "m")):
+                        "--penetration in m), --speed in m/s, with --E0 --Einf, --tau-creep "
+                        "or --tau-relax, --nu --wavelength --amplitude")
+    for name, unit in (("E0", "Pa"), ("Einf", "Pa"), ("tau-creep", "s"), ("tau-relax", "s"),
+                       ("nu", "-"), ("wavelength", "m"), ("amplitude", "m")):
         p.add_argument(f"--{name}", type=_float_opt(name), default=None,
-                       help=f"--units SI: {name} [{unit}]")
+                       help=f"--units SI: {name} [{unit}]" + _TIMES.get(name, ""))
+    p.add_argument("--tau", action=WhichTime, dest="_tau")
     p.add_argument("--out", default="verify-report", help="output folder (default ./verify-report)")
     p.add_argument("--label", default=None, help="name of the solver under test in the report")
     p.add_argument("--no-figures", action="store_true", help="skip the figures")

@@ -161,13 +161,17 @@ def point_from_args(args):
         if given["profile"] or given["prony"]:
             raise bad_input("--units", "SI", "given with --profile/--prony",
                             "SI operating points for the sinusoid on the standard linear solid")
-        need = [k for k in ("E0", "Einf", "tau", "nu", "wavelength", "amplitude")
+        need = [k for k in ("E0", "Einf", "nu", "wavelength", "amplitude")
                 if getattr(args, k) is None]
+        if args.tau_creep is None and args.tau_relax is None:
+            need.insert(2, "tau_creep")
         if need:
-            raise bad_input(f"--{need[0]}", None, "missing with --units SI",
-                            "--E0 --Einf --tau --nu --wavelength --amplitude")
+            raise bad_input(f"--{need[0].replace('_', '-')}", None, "missing with --units SI",
+                            "--E0 --Einf, --tau-creep or --tau-relax, --nu --wavelength "
+                            "--amplitude")
         try:
-            sc = scales(E0=args.E0, Einf=args.Einf, tau=args.tau, nu=args.nu,
+            sc = scales(E0=args.E0, Einf=args.Einf, tau_creep=args.tau_creep,
+                        tau_relax=args.tau_relax, nu=args.nu,
                         wavelength=args.wavelength, amplitude=args.amplitude, speed=given["speed"],
                         mean_pressure=given["load"], penetration=given["penetration"])
         except ValueError as exc:
