@@ -17,8 +17,9 @@ on (:mod:`viscosine.checks` the input checks, :mod:`viscosine.protocol` the resu
 :mod:`viscosine.fields`, :mod:`viscosine.si` the SI front, :mod:`viscosine.table` sweeps as
 tables, :mod:`viscosine.materials` relaxation series and master curves): no package reaches into
 another's private modules.  ``viscosine.analytic``,
-``viscosine.bem`` and ``viscosine.comparisons`` are the three packages themselves (imported on
-first use).
+``viscosine.bem`` and ``viscosine.comparisons`` are thin modules that hand out the three packages'
+own objects (``from viscosine.bem import solve``; imported on first use), and
+``python -m viscosine`` (or the ``viscosine`` command) is ``python -m comparisons``.
 """
 from __future__ import annotations
 
@@ -48,7 +49,7 @@ _LAZY = {"analytic", "bem", "comparisons"}
 
 def __getattr__(name):  # the roads are imported only when asked for
     if name in _LAZY:
-        return importlib.import_module(name)
+        return importlib.import_module(f"{__name__}.{name}")
     raise AttributeError(f"module 'viscosine' has no attribute {name!r}")
 
 

@@ -68,8 +68,12 @@ def _add(sub, module):
         stub.set_defaults(run=unavailable)
 
 
-def build_parser():
-    parser = Parser(prog="python -m comparisons",
+#: the program's name in --help and in every message, unless the caller names it otherwise
+PROG = "python -m comparisons"
+
+
+def build_parser(prog=PROG):
+    parser = Parser(prog=prog,
                     description="viscosine: two roads to the steady viscoelastic sliding of a "
                                 "rigid periodic indenter")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
@@ -78,12 +82,13 @@ def build_parser():
     return parser
 
 
-def main(argv=None):
-    """Run the command line; return the exit status (never raises, never prints a traceback)."""
-    parser = Parser(prog="python -m comparisons")  # for the messages, until the real one exists
+def main(argv=None, prog=PROG):
+    """Run the command line; return the exit status (never raises, never prints a traceback).
+    ``prog`` names the program in --help and the messages (``viscosine`` for that command)."""
+    parser = Parser(prog=prog)  # for the messages, until the real one exists
     args = None
     try:
-        parser = build_parser()
+        parser = build_parser(prog)
         args, extra = parser.parse_known_args(argv)
         if extra:
             stray_value = not extra[0].startswith("-") or re.fullmatch(r"-[\d.]\S*", extra[0])
