@@ -65,6 +65,7 @@ def assert_agrees(fields_or_scalars, case, rtol=None, tol=None):
                  + (f" [{r['note']}]" if r["note"] else "") for r in bad]
         if not ev["quantities"]:
             lines = ["no quantity could be compared with the reference"]
+        lines += [f"diagnosis: {d}" for d in ev["diagnosis"]]
         raise AssertionError(f"disagrees with the {ref.road} reference of "
                              f"{case if isinstance(case, str) else point}:\n  "
                              + "\n  ".join(lines))

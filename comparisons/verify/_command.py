@@ -262,6 +262,8 @@ def _print_verdict(ev):
     if conv:
         print("orders vs reference: " + ", ".join(
             f"{k} {fmt(q['order_vs_reference'], '.2f')}" for k, q in conv["quantities"].items()))
+        for line in conv.get("notes", []):
+            print(f"orders: {line}")
     for line in ev["diagnosis"]:
         print(f"diagnosis: {line}")
 

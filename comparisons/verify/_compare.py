@@ -20,7 +20,7 @@ from ._quantities import COMPARED_KEYS, LABELS, REL, edge_differences, measure, 
 from ._reference import Reference
 from ._results import Result
 from ._scalars import scalars_from_fields
-from ._study import convergence
+from ._study import convergence, order_notes
 from ._tolerances import DEFAULT_RTOL, grid_size, tolerance_lines, tolerances
 
 #: On a grid of N points no position is judged finer than this fraction of a spacing per contact
@@ -129,7 +129,8 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
         same measure, when it gave one), passed, note), ``tolerances`` (one line per
         tolerance: the quantities, the value and why), ``floors`` (one line per kind of floor
         added, and why), ``edges``, ``failed`` (the labels of
-        the failing quantities), ``nodes``, ``convergence`` (or None) and ``diagnosis``
+        the failing quantities), ``nodes``, ``convergence`` (or None; its ``notes`` say what
+        negative orders mean, `order_notes`) and ``diagnosis``
         (common slips recognised in the inputs: `diagnose`; ``si``: the inputs were
         converted from SI units).
     """
@@ -156,6 +157,8 @@ def evaluate(results, reference: Reference, rtol=DEFAULT_RTOL, tol=None, rtol_gi
           "failed": failed,
           "nodes": best.nodes,
           "convergence": convergence(results, reference) if len(results) > 1 else None}
+    if ev["convergence"]:
+        ev["convergence"]["notes"] = order_notes(ev["convergence"], rows)
     ev["diagnosis"] = diagnose(best, reference, ev, si=si)
     return ev
 

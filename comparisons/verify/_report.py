@@ -179,6 +179,8 @@ def _convergence_lines(conv):
                     + [fmt(q["order_vs_reference"], ".2f"), fmt(q.get("self_order"), ".2f"),
                        fmt(q.get("richardson"), ".10g"), fmt(q.get("richardson_error"), ".2e")])
     lines += ["Differences from the reference at each N:", "", _html.table(head, rows)]
+    lines += [f"- {note}" for note in conv.get("notes", [])] + ([""] if conv.get("notes")
+                                                                  else [])
     return lines
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 
 from ..convergence import LAST, observed_order, study
-from ._quantities import COMPARED_KEYS, NORM_KEYS, measure, norms
+from ._quantities import COMPARED_KEYS, LABELS, NORM_KEYS, measure, norms
 
 ORDER_FLOOR = 1e-12  # differences below this are round-off: left out of the order fit
 
@@ -51,3 +51,37 @@ def convergence(results, reference):
 
 def _doubling(nodes):
     return all(b == 2 * a for a, b in zip(nodes[:-1], nodes[1:]))
+
+
+def order_notes(conv, rows):
+    """What negative orders mean, one line per kind (empty when every order is ≥ 0).
+
+    An order below 0 says the differences grew with N over the study's range: not a rate.
+    Where the finest difference is within its tolerance (``rows``: the verdict rows), the
+    differences sit at the level of the reference's uncertainty or the solver's round-off and
+    scatter; elsewhere the grids are pre-asymptotic (too coarse for the leading error term to
+    dominate), or the solver converges to another answer, which the verdict then shows.
+    """
+    if not conv:
+        return []
+    passed = {r["key"]: r["passed"] for r in rows}
+    noise, early = [], []
+    for k, q in conv["quantities"].items():
+        for name in ("order_vs_reference", "self_order"):
+            p = q.get(name)
+            if p is not None and math.isfinite(p) and p < 0.0:
+                (noise if passed.get(k) else early).append(LABELS[k])
+                break
+    n = conv["nodes"]
+    span = f"N = {min(n)} … {max(n)}" if n else "these N"
+    out = []
+    if early:
+        out.append(f"{', '.join(early)}: negative orders over {span} are pre-asymptotic, not "
+                   "rates: the differences do not yet fall with N (the grids are too coarse for "
+                   "the leading error term to dominate), or the solver converges to another "
+                   "answer; add finer resolutions before reading an order")
+    if noise:
+        out.append(f"{', '.join(noise)}: negative orders, but the finest difference is within "
+                   "its tolerance: the differences are at the level of the reference's "
+                   "uncertainty or the solver's round-off, where no order can be measured")
+    return out
