@@ -115,11 +115,13 @@ def field_file_name(spec, used, index):
     return name
 
 
-def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields=None):
+def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields=None,
+          on_record=None):
     """Solve ``base`` at every (``control`` value, speed) pair, values in the outer loop, in
     this process, ``workers`` local processes or on the Dask cluster of ``scheduler``; print
     each record in order; with ``fields`` (a folder, made here) write each point's fields to
-    ``fields/<field_file_name>``.
+    ``fields/<field_file_name>``; ``on_record(index, record)`` after each printed record (the
+    sweep's table and picture, `comparisons.sweep_outputs`).
 
     Returns
     -------
@@ -164,6 +166,8 @@ def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields
                     out = {**out, "ok": False, "error": str(exc)}
             if out["ok"]:
                 print(dump(out["record"]), flush=True)
+                if on_record is not None:
+                    on_record(i, out["record"])
             else:
                 failed += 1
                 bad += out["kind"] == "bad_input"

@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import argparse
 
-from .. import points
+from .. import points, sweep_outputs
 from ._common import (EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, Once, accepted_ranges,
                       check_output_dir, check_workers, material_options, parallel_options,
                       resolve, solver_options, units_si, validate)
@@ -19,6 +19,12 @@ def add_parser(sub):
     parallel_options(p, "default 1: this process")
     p.add_argument("--fields", action=Once, metavar="DIR",
                    help="also write the fields of every point to DIR/<solver>_load<P>_speed<S>.csv")
+    p.add_argument("--csv", action=Once, metavar="FILE",
+                   help="also write one CSV row per solved point, as it is done; the header names "
+                        "each column with its unit (speed [V/V0], or speed [m/s] with --units SI)")
+    p.add_argument("--plot", action=Once, metavar="FILE",
+                   help="also draw μ against the speed (log axis), one curve per load, to FILE "
+                        "(.png, .pdf or .svg) when the sweep ends")
     p.set_defaults(run=run)
 
 
@@ -38,6 +44,10 @@ def run(args):
         validate({**base, control: v})
     for s in dict.fromkeys(speeds):
         validate({**base, "speed": s})
-    failed, refused = points.sweep(base, control, values, speeds, workers=args.workers,
-                                   scheduler=args.scheduler, fields=args.fields)
+    sweep_outputs.check(args.csv, args.plot)
+    with sweep_outputs.Outputs(args.csv, args.plot, control=control, n_speeds=len(speeds),
+                               si=si is not None, surface=base.get("surface") is not None) as out:
+        failed, refused = points.sweep(base, control, values, speeds, workers=args.workers,
+                                       scheduler=args.scheduler, fields=args.fields,
+                                       on_record=out.add)
     return EXIT_BAD_INPUT if refused else (EXIT_FAILED if failed else EXIT_OK)

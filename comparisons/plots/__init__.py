@@ -12,6 +12,7 @@ window.
 * `materials`: E′, E″ and tan δ of a Prony series (the report, ``verify``, the suite export)
   and a DMA curve against its Prony fit;
 * `mastercurve`: the friction master curve μ(V, T) (``python -m comparisons mastercurve``);
+* `sweep`: μ against the speed, one curve per load (``python -m comparisons sweep --plot``);
 * `layers`: μ, 2a/λ and p̃FC on a layer of finite thickness, bonded or frictionless (the report).
 
 The report's numbers come from `comparisons.report_numbers`; here they are only drawn.
