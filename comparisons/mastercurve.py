@@ -1,9 +1,16 @@
 """`python -m comparisons mastercurve`: the friction master curve μ(V) of a material at several
 temperatures, every point a boundary-element solve.
 
-    python -m comparisons mastercurve --material FILE (--wlf C1 C2 TREF | --shift-table FILE)
-        --temperatures T [T ...] --speeds V [V ...] --load P --wavelength L --amplitude H
-        --nu NU [--nodes N | --rtol R] [--max-residual B] [--per-decade K] [--out DIR]
+    python -m comparisons mastercurve (--material FILE | --E0 E --Einf E (--tau-creep S | --tau-relax S))
+        [--wlf C1 C2 TREF | --shift-table FILE] --temperatures T [T ...] --speeds V [V ...]
+        --load P --wavelength L --amplitude H --nu NU [--nodes N | --rtol R]
+        [--max-residual B] [--per-decade K] [--out DIR]
+
+Without --wlf or --shift-table the material is solved as given, at the one temperature it holds
+at: ``--temperatures`` then takes that one value, which labels the curve (a_T = 1, `NoShift`).
+The material is a file or the standard linear solid of ``--E0 --Einf`` [Pa] with its creep time
+``--tau-creep`` (τ of eq. 2.3) or its relaxation time ``--tau-relax`` (τ E0/E∞) [s], as
+``point --units SI`` takes it (`standard_linear_solid`).
 
 SI throughout: ``--speeds`` V [m/s] (values or log ranges START:STOP:COUNT), ``--load`` the mean
 pressure p∞ [Pa], ``--wavelength`` λ and ``--amplitude`` h [m] of the rigid sinusoid.  The
@@ -36,6 +43,7 @@ friction), eqs (2.7)–(2.8) (the modulus at the sliding frequency k V).
 from __future__ import annotations
 
 import json
+import math
 import os
 import time
 from dataclasses import dataclass, field
@@ -107,6 +115,55 @@ class FrictionMasterCurve:
                    col("success", bool), col("mu"), col("mu_error"), col("friction_stress"),
                    col("contact_fraction"), col("extrapolated", bool),
                    tuple(r["message"] for r in rows), parameters, tuple(rows))
+
+
+@dataclass(frozen=True)
+class NoShift:
+    """The shift of a material solved only at the temperature it holds at, ``T_ref``: a_T = 1
+    there (no time is moved), and no other temperature is defined."""
+
+    T_ref: float
+
+    def log10_aT(self, T):
+        if float(T) != self.T_ref:
+            raise ValueError(f"T={T!r} is not allowed: without a shift only the material's own "
+                             f"temperature {self.T_ref:g}")
+        return 0.0
+
+
+def standard_linear_solid(E0, Einf, *, tau_creep=None, tau_relax=None):
+    """The standard linear solid of the paper as a relaxation series in Pa and s:
+    E(t) = E0 + (E∞ − E0) exp(−t/θ), θ = τ E0/E∞ the relaxation time of the creep time τ of
+    eq. (2.3) (give exactly one of them).
+
+    Raises
+    ------
+    ValueError
+        Naming the command line's option (``--E0``, ``--Einf``, ``--tau-creep``, ``--tau-relax``),
+        its value and what is allowed.
+
+    References
+    ----------
+    Menga et al. (2014), eq. (2.3).
+    """
+    from viscosine import materials as vm
+    from viscosine.checks import is_real
+
+    def checked(option, v, lower, allowed):
+        if not (is_real(v) and math.isfinite(float(v)) and float(v) > lower):
+            raise ValueError(f"{option} {v!r} is not allowed: {allowed}")
+        return float(v)
+    e0 = checked("--E0", E0, 0.0, "a finite relaxed modulus > 0 [Pa]")
+    einf = checked("--Einf", Einf, e0, f"a finite modulus > --E0 {e0:g} [Pa] (the solid "
+                   "stiffens as it is loaded faster)")
+    if (tau_creep is None) == (tau_relax is None):
+        raise ValueError("--tau-creep or --tau-relax (exactly one) is required: the creep time "
+                         "τ of eq. 2.3, or the relaxation time τ E0/Einf [s]")
+    if tau_creep is not None:
+        theta = checked("--tau-creep", tau_creep, 0.0, "a finite time > 0 [s]") * e0 / einf
+    else:
+        theta = checked("--tau-relax", tau_relax, 0.0, "a finite time > 0 [s]")
+    return vm.Maxwell(e0, (einf - e0,), (theta,))
 
 
 def _nan(v):
@@ -222,12 +279,17 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
         raise ValueError("temperatures=[] is not allowed: at least one temperature")
     if not vs:
         raise ValueError("speeds=[] is not allowed: at least one speed [m/s]")
-    if not isinstance(shift, (vm.WLF, vm.ShiftTable)):
+    if not isinstance(shift, (vm.WLF, vm.ShiftTable, NoShift)):
         raise ValueError(f"shift={shift!r} is not allowed: a viscosine.materials.WLF or "
-                         "ShiftTable (a_T of the material's times)")
+                         "ShiftTable (a_T of the material's times), or NoShift (one temperature)")
+    if isinstance(shift, NoShift) and any(t != shift.T_ref for t in temps):
+        raise ValueError(f"--temperatures {' '.join(f'{t:g}' for t in temps)} is not allowed "
+                         f"without a shift: only the material's own temperature, {shift.T_ref:g} "
+                         "(others need --wlf or --shift-table)")
     if shift_info is None:
         shift_info = ({"kind": "WLF", "C1": shift.C1, "C2": shift.C2, "T_ref": shift.T_ref}
                       if isinstance(shift, vm.WLF) else
+                      {"kind": "none", "T_ref": shift.T_ref} if isinstance(shift, NoShift) else
                       {"kind": "table", "T": [shift.T[0], shift.T[-1]]})
     if isinstance(material, (str, os.PathLike)):
         base = _materials.read(os.fspath(material), max_residual=max_residual,
@@ -339,7 +401,14 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
 
     check_output_dir("--out", out, create=False)
     try:
-        shift, shift_info = _materials.shift_from_options(wlf, shift_table)
+        if wlf is None and shift_table is None:  # the material's own temperature only
+            if len(temperatures) != 1:
+                raise BadInput(f"--temperatures {' '.join(f'{t:g}' for t in temperatures)} is "
+                               "not allowed without --wlf or --shift-table: one, the material's own")
+            shift = NoShift(float(temperatures[0]))
+            shift_info = {"kind": "none", "T_ref": shift.T_ref}
+        else:
+            shift, shift_info = _materials.shift_from_options(wlf, shift_table)
         plan, parameters = prepare(
             material, shift=shift, shift_info=shift_info, temperatures=temperatures,
             speeds=speeds, mean_pressure=mean_pressure, wavelength=wavelength,
