@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from viscosine import DEFAULT_RTOL
+
 from . import _kernels
 from ._inputs import Prony, Sinusoid, _direct
 from ._layer import mean_displacement
@@ -624,7 +626,8 @@ def _problems(sc, fields, load, asked_load, gap_roundoff=ROUNDOFF):
 
 
 def build_result(res, grid, profile, material, speed, amp, load, history, *, asked, control,
-                 error_estimate=None, rtol=None, extra_diagnostics=None, on_layer=None):
+                 error_estimate=None, rtol=None, extra_diagnostics=None, on_layer=None,
+                 memory_bound=0.0):
     """The `BemResult` of a solved grid, and the last physical-validity gate.
 
     Parameters
@@ -652,6 +655,10 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
     on_layer : bem.Layer, optional
         The layer under the profile (None: the half-space): ``diagnostics["layer"]`` then describes it and gives the
         indenter's absolute approach (`_layer_diagnostics`).
+    memory_bound : float
+        What the memory lengths the grid does not resolve may shift μ by (relative), as the
+        error estimate carries it: a pressure memory layer under a panel is a warning only
+        where this exceeds the accuracy asked (``rtol``, else ``viscosine.DEFAULT_RTOL``).
 
     Returns
     -------
@@ -681,7 +688,7 @@ def build_result(res, grid, profile, material, speed, amp, load, history, *, ask
           "load": mean_p}
     success, status, message = _verdict(
         res, n, residuals, sc, {"pressure": p_out, "displacement": disp, "gap": gap_out}, load,
-        ROUNDOFF * (grid.scale / amp), layer, full, warnings)
+        ROUNDOFF * (grid.scale / amp), (layer, memory_bound, rtol), full, warnings)
     ratio = getattr(material, "ratio", None)
     if on_layer is not None:
         extra_diagnostics = dict(extra_diagnostics or {})
@@ -804,11 +811,13 @@ def _result_fields(res, grid, amp):
     return grid.x, sigma, disp, np.where(active, 0.0, gap) / amp, None
 
 
-def _verdict(res, n, residuals, sc, fields, load, gap_roundoff, layer, full, warnings):
+def _verdict(res, n, residuals, sc, fields, load, gap_roundoff, memory, full, warnings):
     """(success, status, message) of the result: the solver's status, with the residuals where
     it did not converge; a converged answer passed through the validity gate (`_problems`) or
-    refused (STATUS_INVALID).  A memory layer under a panel (``layer`` panels) at the edges of a
-    partial contact is added to the message and to ``warnings``."""
+    refused (STATUS_INVALID).  ``memory`` is (panels across the thinnest pressure memory layer,
+    its bound on μ, the accuracy asked or None): a layer under a panel at the edges of a partial
+    contact is added to the message and to ``warnings`` only where its bound on μ exceeds the
+    accuracy asked (`_memory_note`)."""
     status = int(res["status"])
     success = status == CONVERGED
     message = res["message"]
@@ -823,9 +832,23 @@ def _verdict(res, n, residuals, sc, fields, load, gap_roundoff, layer, full, war
         if bad:
             success, status = False, STATUS_INVALID
             message = "invalid result: " + "; ".join(bad)
-        elif layer < 1.0 and not full:
-            note = (f"the pressure memory layer spans {layer:.2g} panel: contact edges carry an "
-                    "error of the order of the layer (refine N to resolve it)")
-            message += "; " + note
-            warnings.append(note)
+        elif not full:
+            note = _memory_note(*memory)
+            if note:
+                message += "; " + note
+                warnings.append(note)
     return success, status, message
+
+
+def _memory_note(layer, bound, rtol):
+    """The warning of a pressure memory layer under a panel (``layer`` panels across it), or
+    None where it does not matter: its edge shift's bound on μ (``bound``, relative, already in
+    the error estimate) within the accuracy asked (``rtol``; DEFAULT_RTOL on a fixed mesh)."""
+    target = DEFAULT_RTOL if rtol is None else rtol
+    if not (layer < 1.0 and bound > target):
+        return None
+    asked = f"rtol={target:g}" if rtol is not None else f"the default rtol={target:g}"
+    return (f"the pressure memory layer spans {layer:.2g} panel: its shift of the contact edges "
+            f"may move μ by up to {bound:.1e} (relative, in the error estimate), more than "
+            f"{asked}; refine N (or ask for a looser rtol); docs/materials.md, 'The pressure "
+            "memory layer'")

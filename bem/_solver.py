@@ -23,7 +23,8 @@ from viscosine.checks import bad, positive_int, real
 
 from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._assemble import build_result
-from ._estimate import ESTIMATE_GRIDS, _estimate, _level_scalars, _met
+from ._estimate import (ESTIMATE_GRIDS, ESTIMATE_SAFETY, _estimate, _level_scalars, _met,
+                        _unresolved_memory)
 from ._grid import START_NODES, _Grid, _solve_one
 from ._inputs import Prony, Sinusoid
 from ._layer import Layer, finest_nodes
@@ -388,7 +389,8 @@ def _try_window(p: _Problem, run: _Run, res, grid) -> BemResult | None:
         answer = build_result(window["res"], window["grid"], p.profile, p.material, p.speed,
                               p.amp, p.load, run.levels + window["levels"], asked=p.asked,
                               control=p.control, error_estimate=window["estimate"],
-                              rtol=p.rtol, extra_diagnostics={"window": window["summary"]})
+                              rtol=p.rtol, extra_diagnostics={"window": window["summary"]},
+                              memory_bound=_memory_bound(p, window["grid"].nodes))
         if answer.success:
             return answer
         window["summary"]["outcome"] = answer.message
@@ -415,7 +417,14 @@ def _grids_result(p: _Problem, run: _Run) -> BemResult:
         extra["window"] = run.window["summary"]
     return build_result(res, grid, p.profile, p.material, p.speed, p.amp, p.load, run.levels,
                         asked=p.asked, control=p.control, error_estimate=estimate,
-                        rtol=p.rtol, extra_diagnostics=extra or None, on_layer=p.layer)
+                        rtol=p.rtol, extra_diagnostics=extra or None, on_layer=p.layer,
+                        memory_bound=_memory_bound(p, grid.n))
+
+
+def _memory_bound(p: _Problem, n: int) -> float:
+    """What the memory lengths N = n panels do not resolve may shift μ by (relative), as the
+    estimate carries it (`_estimate._unresolved_memory`, times ESTIMATE_SAFETY)."""
+    return ESTIMATE_SAFETY * _unresolved_memory(p.material, p.speed, n) if p.speed > 0 else 0.0
 
 
 def _short_of_target(p: _Problem, run: _Run):
