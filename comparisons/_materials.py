@@ -7,8 +7,11 @@ A material file is one of `viscosine.materials.FORMS`, told apart by its first l
 * ``creep``: ``J0 <value>`` then ``J_i tau_i`` (`bem.read_prony`; creep, i.e. retardation, times);
 * ``relaxation``: ``E_r <value>`` then ``E_i theta_i`` (`viscosine.materials.read_relaxation`;
   relaxation times), converted exactly (`Maxwell.creep`);
-* ``dma``: a CSV master curve (`viscosine.materials.read_dma`), fitted with
-  `viscosine.materials.fit_prony`; a fit missing the data by more than its bound is refused.
+* ``dma``: a master curve table (`viscosine.materials.read_dma`), fitted with
+  `viscosine.materials.fit_prony` and reported (residuals per decade, scatter, Kramers-Kronig
+  figure: the record's ``material.fit``); refused only with ``--max-residual`` when missed.
+
+The file is read once (its bytes give the SHA-256, its form and its contents).
 
 Reference units (what the dimensionless groups are measured in; every record states them):
 
@@ -55,6 +58,7 @@ class Material(NamedTuple):
     info: dict      # JSON-ready description (goes into the spec and every record)
     prony: object   # bem.Prony: the creep series in E_ref and tau_ref
     model: object   # viscosine.materials.Maxwell at the temperature (None for a creep file)
+    curve: object = None  # viscosine.materials.MasterCurve a DMA fit was made to
 
 
 def sls_description(ratio) -> dict:
@@ -94,7 +98,7 @@ def shift_from_options(wlf=None, shift_table=None):
 
 
 def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
-         per_decade=None, si=False, option="--material") -> Material:
+         per_decade=None, loss_weight=None, si=False, option="--material") -> Material:
     """Read a material file of any accepted form, at a temperature, for the BEM road.
 
     Parameters
@@ -103,10 +107,11 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         The file.
     temperature : float, optional
         With exactly one of ``wlf`` ((C1, C2, T_ref)) and ``shift_table`` (a file).
-    max_residual, per_decade : float, optional
-        The DMA fit's bound on its largest relative residual, and its relaxation times per
-        decade (None: the defaults of `viscosine.materials.fit_prony`); refused for a series
-        file.
+    max_residual, per_decade, loss_weight : float, optional
+        The DMA fit's bound on its largest relative residual, its relaxation times per decade
+        and the weight of E'' against E' (None: the defaults of
+        `viscosine.materials.fit_prony`: no bound, times chosen by held-out residual, equal
+        weights); refused for a series file.
     si : bool
         Units of the file: SI (series in Pa and s; a DMA curve in the unit its header names),
         reference modulus E_r [Pa] and 1 s; else the file's own units (module docstring).
@@ -127,18 +132,20 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         raise ValueError(f"--temperature {temperature!r} is not allowed without --wlf C1 C2 TREF "
                          "or --shift-table FILE: the shift a_T(T) of the material's times")
     try:
-        form = vm.material_form(path)
+        form = vm.material_form(path, data=data)
     except ValueError as exc:
         raise ValueError(f"{where}: {one_line(exc)}") from None
-    if form != "dma" and (max_residual is not None or per_decade is not None):
-        given = "--max-residual" if max_residual is not None else "--per-decade"
-        raise ValueError(f"{given} is not allowed here: it sets the Prony fit of a DMA master "
-                         f"curve, and {path} is a {form} series")
+    fit_options = {"max_residual": max_residual, "per_decade": per_decade,
+                   "loss_weight": loss_weight}
+    given = [k for k, v in fit_options.items() if v is not None]
+    if form != "dma" and given:
+        raise ValueError(f"--{given[0].replace('_', '-')} is not allowed here: it sets the Prony "
+                         f"fit of a DMA master curve, and {path} is a {form} series")
     shift, shift_info = shift_from_options(wlf, shift_table)
-    fit_info = None
+    fit_info = curve = None
     try:
         if form == "creep":
-            prony = roads.read_prony(path)
+            prony = roads.prony(*vm.read_creep(path, option="prony", data=data))
             model = None
             terms = len(prony.J)
             e_ref = 1.0
@@ -147,9 +154,10 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
                 prony = roads.prony(1.0, tuple(j * e_ref for j in prony.J), prony.tau)
         else:
             if form == "relaxation":
-                model = vm.read_relaxation(path)
+                model = vm.read_relaxation(path, data=data)
             else:
-                model = _fit(vm, vm.read_dma(path), max_residual, per_decade)
+                curve = vm.read_dma(path, data=data)
+                model = _fit(vm, curve, fit_options)
                 if si:
                     model = model.in_pascals()
             terms = len([e for e in model.E if e > 0.0])
@@ -162,7 +170,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
             "terms": terms, **references(form, si, e_ref, fit_info),
             "temperature": None, "shift": None, "log10_aT": None,
             "fit": fit_info, "units": "SI" if si else "file"}
-    m = Material(info, prony, model)
+    m = Material(info, prony, model, curve)
     if shift is not None:
         m = at_temperature(m, shift, shift_info, temperature,
                            "--wlf" if wlf is not None else f"--shift-table {shift_table}")
@@ -176,8 +184,14 @@ def _fit_info(model):
     return {"max_residual": f.max_residual, "bound": f.bound, "storage_max": f.storage_max,
             "storage_rms": f.storage_rms, "loss_max": f.loss_max, "loss_rms": f.loss_rms,
             "tan_delta_max": f.tan_delta_max, "per_decade": f.per_decade,
+            "per_decade_chosen_by": f.chosen_by,
+            "held_out": [list(h) for h in f.held_out], "loss_weight": f.loss_weight,
             "candidates": f.candidates, "modulus_unit": f.modulus_unit,
-            "window": list(f.window)}
+            "frequency_unit": f.frequency_unit, "window": list(f.window),
+            "scatter": list(f.scatter), "kk_range": list(f.kk_range),
+            "decades": [dict(d) for d in f.decades], "worst": [dict(p) for p in f.worst],
+            "points": f.points, "merged": f.merged, "drops": list(f.drops),
+            "relaxed_floor": f.relaxed_floor, "warnings": list(f.warnings)}
 
 
 def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") -> Material:
@@ -207,7 +221,7 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
         prony = roads.prony(*model.creep(E_ref=m.info["E_ref"] or 1.0, tau_ref=1.0))
     info = {**m.info, "temperature": float(temperature), "shift": shift_info,
             "log10_aT": log_a, "fit": _fit_info(model) if model is not None else None}
-    return Material(info, prony, model)
+    return Material(info, prony, model, m.curve)
 
 
 def from_model(model) -> Material:
@@ -233,17 +247,15 @@ def from_model(model) -> Material:
     return Material(info, roads.prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model)
 
 
-def _fit(vm, curve, bound, per_decade):
-    given = {k: v for k, v in (("max_residual", bound), ("per_decade", per_decade))
-             if v is not None}
+def _fit(vm, curve, options):
+    given = {k: v for k, v in options.items() if v is not None}
     try:
         return vm.fit_prony(curve, **given)
     except ValueError as exc:
         text = one_line(exc)
-        if text.startswith("max_residual="):  # the option the user typed
-            text = "--max-residual " + text[len("max_residual="):]
-        elif text.startswith("per_decade="):
-            text = "--per-decade " + text[len("per_decade="):]
+        for name in options:                  # the option the user typed
+            if text.startswith(name + "="):
+                text = f"--{name.replace('_', '-')} " + text[len(name) + 1:]
         raise ValueError(text) from None
 
 
@@ -278,7 +290,10 @@ def reread(info) -> Material:
                 wlf=(shift["C1"], shift["C2"], shift["T_ref"]) if shift.get("kind") == "WLF"
                 else None,
                 shift_table=shift.get("path") if shift.get("kind") == "table" else None,
-                max_residual=fit.get("bound"), per_decade=fit.get("per_decade"),
+                max_residual=fit.get("bound"),
+                per_decade=fit.get("per_decade") if fit.get("per_decade_chosen_by") == "given"
+                else None,
+                loss_weight=fit.get("loss_weight") if fit.get("loss_weight") != 1.0 else None,
                 si=info.get("units") == "SI")
 
 

@@ -140,7 +140,8 @@ def test_dma_point_records_the_file_its_sha256_and_the_fit(tmp_path):
     assert m["sha256"] == hashlib.sha256(SBR.read_bytes()).hexdigest()
     fit = fit_prony(read_dma(SBR))
     assert m["terms"] == len(fit.E) and m["E_ref"] == fit.E_r and m["tau_ref"] == 1.0
-    assert m["fit"]["max_residual"] == fit.fit.max_residual < m["fit"]["bound"] == 0.05
+    assert m["fit"]["max_residual"] == fit.fit.max_residual < 0.02
+    assert m["fit"]["bound"] is None                      # no bound unless --max-residual
     assert m["fit"]["modulus_unit"] == "MPa" and "[MPa]" in m["E_ref_is"]
     assert "1 s" in rec["time_unit"] and rec["success"] is True
     assert "extrapolation" not in proc.stderr             # ω = 1 … 10 rad/s: measured
@@ -352,17 +353,9 @@ BAD = [
      "a storage modulus > 0 (storage -1.0) (line 5)"),
     (POINT + ["--material", "{file}"], _curve(_with(2, (GOOD[2][0], GOOD[2][1], 0.0))),
      "a loss modulus > 0"),
-    (POINT + ["--material", "{file}"], _curve(_with(4, (GOOD[2][0], GOOD[4][1], GOOD[4][2]))),
-     "out of order"),
-    (POINT + ["--material", "{file}"], _curve(_with(4, (GOOD[3][0], GOOD[4][1], GOOD[4][2]))),
-     "a duplicate"),
     (POINT + ["--material", "{file}"], _curve(_with(3, (GOOD[3][0], "nan", GOOD[3][2]))),
      "finite numbers (line 5: storage"),
-    (POINT + ["--material", "{file}"], _curve(_with(5, (GOOD[5][0], 2.5, GOOD[5][2]))),
-     "does not decrease with frequency"),
-    (POINT + ["--material", "{file}"], _curve([(w, s, 1e-3 * l) for w, s, l in GOOD]),
-     "Kramers-Kronig"),
-    (POINT + ["--material", "{file}"], _curve(GOOD, "frequency,storage [MPa],loss [kPa]"),
+    (POINT + ["--material", "{file}"], _curve(GOOD, "frequency,storage [MPa],loss [bar]"),
      "storage and loss in one unit"),
     # relaxation and creep series
     (POINT + ["--material", "{file}"], "E_r -1\n", "relaxed modulus E_r > 0"),
@@ -448,10 +441,10 @@ def test_bad_material_input_is_one_line_and_status_2(argv, content, fragment, dm
 
 
 def test_bad_input_end_to_end_is_one_line_and_status_2(tmp_path):
-    (tmp_path / "dma.csv").write_text(_curve(_with(4, (GOOD[3][0], GOOD[4][1], GOOD[4][2]))))
+    (tmp_path / "dma.csv").write_text(_curve(_with(4, (GOOD[4][0], -1.0, GOOD[4][2]))))
     proc = _cli(*POINT, "--material", tmp_path / "dma.csv", cwd=tmp_path)
     assert proc.returncode == 2 and proc.stdout == ""
-    assert len(proc.stderr.strip().splitlines()) == 1 and "a duplicate" in proc.stderr
+    assert len(proc.stderr.strip().splitlines()) == 1 and "storage modulus > 0" in proc.stderr
     assert "Traceback" not in proc.stderr
 
 

@@ -32,7 +32,8 @@ Conventions
 
 Modules: ``_series`` (the two Prony forms and their interconversion), ``_dma`` (master curves
 and their checks), ``_fit`` (the Prony fit and its report), ``_temperature`` (WLF and shift
-tables), ``_files`` (every file format), ``_units`` (the units a file may state).
+tables), ``_files`` (every file format; ``_text`` cuts the text of a table: separators, decimal
+commas, comments), ``_units`` (the units a file may state).
 
 The two forms are exactly interconvertible: with ``p = -s`` (s the Laplace variable) the modulus
 ``E(p) = E_r - p sum_i E_i theta_i/(1 - p theta_i)`` is decreasing between its poles
@@ -52,7 +53,7 @@ J. Am. Chem. Soc. 77, 3701 (1955) (the WLF shift).
 """
 from __future__ import annotations
 
-from ._dma import MIN_POINTS, MasterCurve
+from ._dma import MERGE_RTOL, MIN_POINTS, MasterCurve
 from ._files import (FORMS, material_form, read_creep, read_dma, read_relaxation,
                      read_shift_table)
 from ._fit import FitReport, fit_prony
@@ -60,6 +61,6 @@ from ._series import Creep, Maxwell
 from ._temperature import WLF, ShiftTable
 from ._units import PASCALS
 
-__all__ = ["Creep", "FORMS", "FitReport", "MIN_POINTS", "MasterCurve", "Maxwell", "PASCALS",
-           "ShiftTable", "WLF", "fit_prony", "material_form", "read_creep", "read_dma",
+__all__ = ["Creep", "FORMS", "FitReport", "MERGE_RTOL", "MIN_POINTS", "MasterCurve", "Maxwell",
+           "PASCALS", "ShiftTable", "WLF", "fit_prony", "material_form", "read_creep", "read_dma",
            "read_relaxation", "read_shift_table"]
