@@ -22,7 +22,7 @@ Where each job lives (a module imports only its own line and the lines below it)
   them, and the third codes run as witnesses.
 - ``convergence`` (order, Richardson, certified digits), ``fields`` (patches and sampled
   fields), ``_io`` (the atomic UTF-8 writer and the readers), ``_errors`` (what a command
-  reports), ``_html``: shared by all of the above.
+  reports), ``_html``, ``progress`` (the throttled progress line): shared by all of the above.
 
 Beside these, ``bench/`` holds the benchmarks that print figures: it times the roads themselves
 and may use any job; only the command line's ``bench`` imports it.

@@ -53,6 +53,7 @@ import numpy as np
 from ._errors import BadInput
 from ._io import check_output_dir, jsonable, stderr, write_text
 from .plots import mastercurve as figure
+from .progress import Progress
 
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
 DEFAULT_RTOL = 1e-3
@@ -438,6 +439,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             + ",".join(COLUMNS) + "\n")
     t0 = time.monotonic()
     failed = 0
+    progress = Progress()
 
     def on_point(row, i, total, reused):
         nonlocal failed
@@ -447,10 +449,15 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
         what = (f"mu = {row['mu']:.6g}" if row["success"] else f"FAILED: {row['message']}")
         extra = " (extrapolated)" if row["extrapolated"] else ""
         how = "from points.csv" if reused else f"{row['seconds']:.2f} s"
-        stderr(f"mastercurve: {i + 1}/{total} T = {row['temperature']:g}, V = "
-               f"{row['speed']:.4g} m/s: {what}{extra} ({how}; {time.monotonic() - t0:.1f} s)")
+        line = (f"mastercurve: {i + 1}/{total} T = {row['temperature']:g}, V = "
+                f"{row['speed']:.4g} m/s: {what}{extra} ({how}; {time.monotonic() - t0:.1f} s)")
+        if row["success"]:
+            progress.update(line, final=i + 1 == total)
+        else:
+            progress.say(line)
 
     table = solve(plan, parameters, done=done, on_point=on_point)
+    progress.close()
     total = len(plan)
     doc = {"parameters": parameters, "columns": list(COLUMNS), "units": UNITS,
            "points": list(table.rows)}

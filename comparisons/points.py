@@ -15,6 +15,7 @@ from . import runner
 from ._errors import BadInput, Failed
 from ._io import check_output_dir, stderr
 from .fields import write_fields_csv
+from .progress import Progress
 
 
 def dump(record) -> str:
@@ -148,7 +149,8 @@ def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields
     fn = runner._run_with_fields if fields is not None else runner.run
     chunk = max(1, min(64, total // (8 * max(1, ex.workers))))
     used, failed, bad = set(), 0, 0
-    t0 = last = time.monotonic()
+    progress = Progress()  # in place on a terminal, a line every few seconds in a log
+    t0 = time.monotonic()
     with ex:
         for i, out in ex.imap(fn, specs, chunksize=chunk):
             spec = spec_at(i)
@@ -157,7 +159,7 @@ def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields
                 out = {"ok": False, "kind": "failed", "error": f"could not solve: {out.error}",
                        "warnings": []}
             for w in out["warnings"]:
-                stderr(f"{where}: warning: {w}")
+                progress.say(f"{where}: warning: {w}")
             if out["ok"] and fields is not None:
                 path = os.path.join(fields, field_file_name(spec, used, i))
                 try:
@@ -171,14 +173,14 @@ def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields
             else:
                 failed += 1
                 bad += out["kind"] == "bad_input"
-                stderr(f"{where}: {out['error']}")
+                progress.say(f"{where}: {out['error']}")
             now = time.monotonic()
-            if now - last > 2.0 or (i + 1 == total and now - t0 > 2.0):
-                eta = ""
-                if 10 <= i + 1 < total:  # an estimate only once a few points are in
-                    eta = f" (about {(now - t0) / (i + 1) * (total - i - 1):.0f} s left)"
-                stderr(f"sweep: {i + 1}/{total} points, {failed} failed, {now - t0:.1f} s{eta}")
-                last = now
+            eta = ""
+            if 10 <= i + 1 < total:  # an estimate only once a few points are in
+                eta = f" (about {(now - t0) / (i + 1) * (total - i - 1):.0f} s left)"
+            progress.update(f"sweep: {i + 1}/{total} points, {failed} failed, {now - t0:.1f} s"
+                            f"{eta}", final=i + 1 == total)
+    progress.close()
     if failed:
         stderr(f"sweep: {failed} of {total} points could not be solved")
     return failed, bad

@@ -10,6 +10,7 @@ import sys
 import time
 
 from . import gate, runner
+from .progress import Progress
 
 
 def run(jobs, store, resume, workers, scheduler=None):
@@ -45,6 +46,7 @@ def run(jobs, store, resume, workers, scheduler=None):
     print(f"report: {'; '.join(counts)}", file=sys.stderr)
     t0 = time.monotonic()
     where = "none (every result read from the store)"
+    progress = Progress()
     if todo:
         with _cluster.executor(None if scheduler else workers, scheduler) as ex:
             where = (f"Dask scheduler {scheduler} ({ex.workers} workers)" if scheduler else
@@ -56,11 +58,13 @@ def run(jobs, store, resume, workers, scheduler=None):
                 else:
                     out = value[2]
                 store.put(spec, out, f)
-                _progress(i, len(todo), t0, spec, out)
+                _progress(progress, i, len(todo), t0, spec, out)
+    progress.close()
     return time.monotonic() - t0, where
 
 
-def _progress(i, n, t0, spec, out):
+def _progress(progress, i, n, t0, spec, out):
+    """The run's line: throttled (`comparisons.progress`), a failure always shown."""
     what = f"load={spec['load']}" if spec["load"] is not None else f"Δ/h={spec['penetration']}"
     if spec["solver"] == "tamaas":
         solver = f"tamaas N={spec['nodes']} dt={spec['cells_per_step']}·T/N"
@@ -76,8 +80,12 @@ def _progress(i, n, t0, spec, out):
         if spec["hk"] != 1.0:
             solver += f" hk={spec['hk']:g}"
     status = "ok" if out["ok"] else "FAILED"
-    print(f"report: [{i}/{n}] {solver} {what} V/V0={spec['speed']:.4g} "
-          f"{status} {out['seconds']:.2f} s ({time.monotonic() - t0:.0f} s)", file=sys.stderr)
+    line = (f"report: [{i}/{n}] {solver} {what} V/V0={spec['speed']:.4g} "
+            f"{status} {out['seconds']:.2f} s ({time.monotonic() - t0:.0f} s)")
+    if out["ok"]:
+        progress.update(line, final=i == n)
+    else:
+        progress.say(line)
 
 
 def _run_one(job):

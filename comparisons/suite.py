@@ -124,6 +124,7 @@ from ._io import read_columns, temporary_name, write_text
 from .convergence import (LAST, MAX_ORDER, MIN_ORDER, RELATIVE_FLOOR, ROUNDOFF, SCATTER_FLOOR,
                           digits, half_unit, rounded, study)
 from .fields import PATCH_KEYS, match_patches, neighbour_max, patch_records
+from .progress import Progress
 from .suite_inputs import DATA, ProfileShape
 
 # part of the suite's interface though this module does not use them: the cap on certified
@@ -872,19 +873,20 @@ def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None,
         name, changed, raised, seconds, status; a case whose recomputation raised or whose
         worker died has status "failed" and says why in ``changed``) and ``seconds``.
     """
-    log = log or (lambda s: print(s, file=sys.stderr, flush=True))
+    progress = Progress()  # without a log: each case's line throttled, a change always shown
+    say, tick = (log, log) if log else (progress.say, progress.update)
     suite = suite or load_suite()
     cases = select(suite, names)
     t0 = time.monotonic()
     results = []
     by_name = {c["name"]: c for c in cases}
-    for i, doc in enumerate(_recomputed(cases, out, resume, workers, scheduler, log), 1):
+    for i, doc in enumerate(_recomputed(cases, out, resume, workers, scheduler, tick), 1):
         case = by_name[doc["name"]]
         if "failed" in doc:  # the recomputation itself failed: nothing certified is confirmed
             results.append({"name": doc["name"], "raised": [], "seconds": 0.0,
                             "changed": [f"recomputation failed: {doc['failed']}"],
                             "status": "failed", "notes": [doc["failed"]]})
-            log(f"suite: [{i}/{len(cases)}] {doc['name']}: FAILED ({doc['failed']})")
+            say(f"suite: [{i}/{len(cases)}] {doc['name']}: FAILED ({doc['failed']})")
             continue
         old_fields = case_fields(case)
         new_fields = {k: np.asarray(v, float) for k, v in doc["fields"].items()}
@@ -893,8 +895,10 @@ def check(names=(), out=None, resume=False, workers=1, scheduler=None, log=None,
                         "seconds": doc.get("seconds", 0.0), "status": doc["certified"]["status"],
                         "notes": doc["certified"]["notes"]})
         what = "CHANGED" if changed else "ok"
-        log(f"suite: [{i}/{len(cases)}] {doc['name']}: {what} ({doc.get('seconds', 0.0):.1f} s, "
-            f"{time.monotonic() - t0:.0f} s in all)")
+        (say if changed else tick)(f"suite: [{i}/{len(cases)}] {doc['name']}: {what} "
+                                   f"({doc.get('seconds', 0.0):.1f} s, "
+                                   f"{time.monotonic() - t0:.0f} s in all)")
+    progress.close()
     order = {c["name"]: i for i, c in enumerate(cases)}
     results.sort(key=lambda r: order[r["name"]])
     return {"ok": not any(r["changed"] for r in results), "cases": results,

@@ -18,10 +18,15 @@ import numpy as np
 import bem
 
 from ..convergence import observed_order
+from ..progress import Progress
+
+
+#: the study's progress line (in place on a terminal, a line every few seconds in a log)
+_PROGRESS = Progress()
 
 
 def _progress(msg: str) -> None:
-    print(msg, file=sys.stderr, flush=True)
+    _PROGRESS.update(msg)
 
 
 def _westergaard(load: float, hk: float, modulus: float) -> dict:

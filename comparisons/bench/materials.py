@@ -29,6 +29,7 @@ import time
 
 import numpy as np
 
+from ..progress import Progress
 from .trust import QUANTITIES, _errors
 
 #: the sample's ranges (log-uniform unless said)
@@ -43,8 +44,12 @@ SHAPES = ("log-normal", "box", "power-law", "two-peaks")
 REFERENCE_MARGIN = 1.0 / 3.0
 
 
+#: the study's progress line (in place on a terminal, a line every few seconds in a log)
+_PROGRESS = Progress()
+
+
 def _progress(msg):
-    print(msg, file=sys.stderr, flush=True)
+    _PROGRESS.update(msg)
 
 
 def spectrum(rng, shape, terms, decades, ratio):

@@ -35,6 +35,8 @@ import numpy as np
 import analytic
 import bem
 
+from ..progress import Progress
+
 #: the box of the random sample: name -> (low, high), log-uniform
 BOX = {"load": (1e-4, 10.0), "speed": (1e-4, 1e4), "ratio": (1.01, 1000.0), "hk": (0.01, 10.0)}
 #: the light-load sample (--light): the same box but the load, which is hk times a log-uniform
@@ -44,8 +46,12 @@ LIGHT_LOAD_OVER_HK = (1e-8, 1e-4)
 QUANTITIES = (("mu", True), ("penetration", True), ("ka", False), ("ke", False))
 
 
+#: the study's progress line (in place on a terminal, a line every few seconds in a log)
+_PROGRESS = Progress()
+
+
 def _progress(msg):
-    print(msg, file=sys.stderr, flush=True)
+    _PROGRESS.update(msg)
 
 
 def sample(points, seed, light=False):
