@@ -99,7 +99,7 @@ def write(path, f, e1, e2, *, layout="lab", order="decreasing"):
         body = "".join(f"{a:.6e}\t{b:.6e}\t{c:.6e}\n" for a, b, c in rows)
     elif layout == "plain":
         head = "frequency [Hz],storage [MPa],loss [MPa]\n"
-        body = "".join(f"{a!r},{b!r},{c!r}\n" for a, b, c in rows)
+        body = "".join(f"{float(a)!r},{float(b)!r},{float(c)!r}\n" for a, b, c in rows)
     elif layout == "shear-kpa":        # tensile data written as shear moduli with nu = 0.5
         head = "omega G' G''\nrad/s kPa kPa\n"
         body = "".join(f"{2 * math.pi * a:.8e} {b * 1e3 / 3:.8e} {c * 1e3 / 3:.8e}\n"

@@ -38,7 +38,9 @@ sliding frequency).
 """
 from __future__ import annotations
 
+import dataclasses
 import math
+import os
 
 import numpy as np
 
@@ -219,14 +221,55 @@ def plot_dma_fit(curve, model, *, ax=None, title=None):
     ax.legend(handles=h, fontsize=7, loc="upper left")
     if title is None:
         report = model.fit
-        what = report.summary() if report is not None else f"{len(model.E)} terms"
+        what = report.summary().replace("; ", "\n") if report is not None \
+            else f"{len(model.E)} terms"
         title = f"{curve.source or 'DMA data'}\nProny fit: {what}"
     ax.set_title(title, fontsize=8)
     return ax
 
 
+def plot_dma_residuals(curve, model, *, ax):
+    """Relative residuals (model/datum − 1, %) of E′ and E″ at the data, with the fit report's
+    estimated scatter of the data as a band (±1 σ of E′ and E″)."""
+    fit = model.modulus(curve.omega)
+    r1 = 100.0 * (fit.real / curve.storage - 1.0)
+    r2 = 100.0 * (fit.imag / curve.loss - 1.0)
+    ax.axhline(0.0, color="0.5", lw=0.8)
+    report = model.fit
+    if report is not None:
+        for s, color in zip(report.scatter, ("C0", "C3")):
+            if s is not None:
+                ax.axhspan(-100 * s, 100 * s, color=color, alpha=0.08, zorder=0)
+    ax.semilogx(curve.omega, r1, "o", color="C0", ms=3.0, mfc="none", label="E′")
+    ax.semilogx(curve.omega, r2, "s", color="C3", ms=3.0, mfc="none", label="E″")
+    ax.set_xlabel("ω (rad per time unit of the data)")
+    ax.set_ylabel("fit/data − 1 (%)")
+    ax.grid(True, which="both", alpha=0.25)
+    ax.legend(fontsize=7, loc="best")
+    return ax
+
+
+def material_fit_figure(material, folder="."):
+    """The fit figure of a command line's DMA material (a `comparisons._materials.Material`
+    with its ``curve``), written to ``<folder>/<data file stem>_fit.png``; returns the path, or
+    None for a series file (nothing fitted).  A material moved to a temperature is drawn there:
+    the data's frequencies are shifted with the model's times."""
+    curve = getattr(material, "curve", None)
+    if curve is None:
+        return None
+    stem = os.path.splitext(os.path.basename(material.info.get("path") or "dma"))[0]
+    log_a = material.info.get("log10_aT") or 0.0
+    if log_a:
+        curve = dataclasses.replace(curve, omega=curve.omega / 10.0 ** log_a)
+    return dma_fit_figure(os.path.join(folder, f"{stem}_fit.png"), curve, material.model)
+
+
 def dma_fit_figure(path_png, curve, model, *, title=None):
-    """Write `plot_dma_fit` to ``path_png`` (Agg backend, 110 dpi); returns the path."""
-    fig, ax = pyplot().subplots(figsize=(7.0, 4.6))
+    """Write `plot_dma_fit` above `plot_dma_residuals` to ``path_png`` (Agg backend, 110 dpi);
+    returns the path."""
+    fig, (ax, rax) = pyplot().subplots(2, 1, figsize=(7.0, 6.6), sharex=True,
+                                       gridspec_kw={"height_ratios": [2.2, 1.0]})
     plot_dma_fit(curve, model, ax=ax, title=title)
+    ax.set_xlabel("")
+    plot_dma_residuals(curve, model, ax=rax)
     return save(fig, path_png)
