@@ -274,7 +274,10 @@ def solve_surface_si(*, nu, length, speed, heights=None, surface=None, aspect=No
     sol = _surface_solver.solve_surface(**control, speed=sc.speed, surface=surface,
                                         material=prony, direction=direction, layer=layer,
                                         **options)
-    return SurfaceSIResult.of(sol, sc, lx)
+    slips = (si.slip_warnings(sc, sol.load, sol.contact_fraction, prony.j_plus,
+                              sol.full_contact) if sol.success else [])
+    si.warn_slips(slips)
+    return SurfaceSIResult.of(sol, sc, lx, slips)
 
 
 @dataclass(frozen=True)
@@ -296,7 +299,14 @@ class SurfaceSIResult:
     speed : float
         V [m/s].
     scales : dict
-        The SI scales (E0/(1 − ν²) [Pa], k [1/m], τ_ref [s]) and the groups they gave.
+        The SI scales (`viscosine.si.SIScales.describe`: E_ref, E0/(1 − ν²) [Pa], k [1/m],
+        τ_ref [s], both times of the solid and which was given, each key's ``units``) and the
+        groups they gave (``load``, ``speed_group``).
+    warnings : tuple of str
+        The solution's warnings and the SI door's (a load that looks like a unit slip).
+
+    The result protocol of every door: ``full_contact``, ``status``, ``nodes``,
+    ``error_estimate``, ``tau_f`` (= ``friction_stress`` [Pa]) as on the dimensionless result.
     """
 
     success: bool
@@ -315,28 +325,60 @@ class SurfaceSIResult:
     amplitude: float
     speed: float
     scales: dict
+    warnings: tuple = ()
 
     @classmethod
-    def of(cls, sol, sc, length):
+    def of(cls, sol, sc, length, slips=()):
         e, h, k = sc.estar, sc.amplitude, sc.k
+        scales = sc.describe()
+        scales.update(load=sol.load, speed_group=sc.speed)
+        scales["units"].update(load="-", speed_group="-")
         return cls(success=sol.success, message=sol.message, solution=sol, mu=sol.mu,
                    mu_lateral=sol.mu_lateral, contact_fraction=sol.contact_fraction,
                    n_patches=sol.n_patches, mean_pressure=sol.load * e,
                    friction_stress=sol.tau_f * e, max_pressure=sol.max_pressure * e,
                    penetration=sol.penetration * h, separation=sol.separation * h,
-                   length=length, amplitude=h, speed=sc.speed / (sc.tau * k),
-                   scales={"plane_strain_modulus": e, "k": k, "tau_ref": sc.tau,
-                           "load": sol.load, "speed_group": sc.speed, "ratio": sc.ratio})
+                   length=length, amplitude=h, speed=sc.speed / (sc.tau * k), scales=scales,
+                   warnings=tuple(sol.warnings) + tuple(slips))
+
+    # the result protocol of every door, from the dimensionless solution
+    @property
+    def full_contact(self) -> bool:
+        return bool(self.solution.full_contact)
+
+    @property
+    def status(self) -> int:
+        return int(self.solution.status)
+
+    @property
+    def nodes(self) -> int:
+        return int(self.solution.nodes)
+
+    @property
+    def error_estimate(self):
+        """The solution's estimate (dimensionless: it applies to the SI scalars alike)."""
+        return self.solution.error_estimate
+
+    @property
+    def tau_f(self) -> float:
+        """τf [Pa] (= ``friction_stress``)."""
+        return self.friction_stress
 
     def scalars(self) -> dict:
-        """The SI scalars (units in the keys' docstring: m, Pa, m/s)."""
+        """The SI scalars (units: `viscosine.si.UNITS`)."""
         return {k: getattr(self, k) for k in (
             "mu", "mu_lateral", "contact_fraction", "n_patches", "mean_pressure",
             "friction_stress", "max_pressure", "penetration", "separation")}
 
     def as_dict(self) -> dict:
-        """The dimensionless record with an ``si`` block (m, Pa, m/s)."""
+        """The dimensionless record with an ``si`` block (its scalars, the cell's length and
+        amplitude and the speed, with ``units`` per key), ``si_scales`` (`scales`) and the
+        warnings of both."""
         rec = self.solution.as_dict()
-        rec["si"] = dict(self.scalars(), length=self.length, amplitude=self.amplitude,
-                         speed=self.speed, units="m, Pa, m/s", **self.scales)
+        rec["warnings"] = list(self.warnings)
+        block = dict(self.scalars(), length=self.length, amplitude=self.amplitude,
+                     speed=self.speed)
+        block["units"] = {k: si.UNITS[k] for k in block}
+        rec["si"] = block
+        rec["si_scales"] = self.scales
         return rec

@@ -11,6 +11,14 @@ from dataclasses import asdict, dataclass
 
 import numpy as np
 
+#: a mean pressure above this many times the instantaneous (glassy) plane-strain modulus
+#: E∞/(1 − ν²), i.e. p̃∞ J(0+) > LINEAR_LIMIT, strains the solid by order one even at the
+#: stiffest response: outside linear theory, and usually a pressure in the wrong unit
+LINEAR_LIMIT = 1.0
+#: a partial contact covering less than this fraction of the period is a vanishing sliver
+#: (1 µm of a 1 mm wavelength): usually a load in the wrong unit
+SLIVER = 1e-3
+
 #: the eight scalars of one operating point, in the order of the conventions
 SCALAR_KEYS = ("full_contact", "contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f",
                "mu")
@@ -68,12 +76,52 @@ class Patch:
     ke_hat: float
 
 
+def instantaneous_compliance(res) -> float:
+    """J(0+) of a result's material in units of its reference compliance: the Prony series'
+    ``j_plus`` (the BEM's ``material``), else 1/ratio of the standard linear solid, else 1."""
+    material = getattr(res, "material", None)
+    if getattr(material, "j_plus", None) is not None:
+        return float(material.j_plus)
+    ratio = getattr(res, "ratio", None)
+    return 1.0 / float(ratio) if ratio else 1.0
+
+
+def unit_slips(load, contact_fraction, j_plus, full_contact=False) -> dict:
+    """The signs of a load in the wrong unit: ``{"strain": p̃∞ J(0+)}`` above LINEAR_LIMIT (the
+    mean pressure over the instantaneous plane-strain modulus) and ``{"sliver": 2a/λ}`` for a
+    partial contact below SLIVER; empty when neither."""
+    out = {}
+    if load is not None and math.isfinite(load) and load * j_plus > LINEAR_LIMIT:
+        out["strain"] = load * j_plus
+    if (not full_contact and contact_fraction is not None and math.isfinite(contact_fraction)
+            and 0.0 <= contact_fraction < SLIVER):
+        out["sliver"] = contact_fraction
+    return out
+
+
+def slip_warnings(load, contact_fraction, j_plus, full_contact=False) -> list:
+    """`unit_slips` as the warnings of a dimensionless record (both line roads)."""
+    found = unit_slips(load, contact_fraction, j_plus, full_contact)
+    out = []
+    if "strain" in found:
+        out.append(f"p̃∞ = {load:.3g} is {found['strain']:.2g} × the instantaneous plane-strain "
+                   f"modulus (p∞ > E∞/(1 − ν²); the limit {LINEAR_LIMIT:g}): far outside linear "
+                   "theory; a mean pressure in Pa given without --units SI?")
+    if "sliver" in found:
+        out.append(f"p̃∞ = {load:.3g} leaves a vanishing sliver of contact (contact fraction "
+                   f"{found['sliver']:.2g} < {SLIVER:g}): a load in the wrong unit (with --units "
+                   "SI, MPa given as Pa?)")
+    return out
+
+
 def record(res, solver, *, inputs=None, error_estimate=None) -> dict:
     """The JSON record both roads' ``as_dict`` return (``allow_nan=False``-safe).
 
     ``res`` follows the result protocol (control, asked, load, speed, ratio, hk, ``scalars()``,
     separation, success, message, warnings, max_pressure, x_max_pressure, n_patches, patches,
-    diagnostics); ``inputs`` are the road's own further inputs, recorded after hk.
+    diagnostics); ``inputs`` are the road's own further inputs, recorded after hk.  The
+    record's ``warnings`` add, to the result's own, a load that looks like a unit slip
+    (`slip_warnings`: far above the modulus, or a vanishing sliver of contact).
     """
     from . import __version__
     rec = {"solver": solver, "version": __version__, "control": res.control,
@@ -82,8 +130,10 @@ def record(res, solver, *, inputs=None, error_estimate=None) -> dict:
            "load": res.load, "speed": res.speed, "ratio": res.ratio, "hk": res.hk}
     rec.update(inputs or {})
     rec.update(res.scalars())
+    slips = (slip_warnings(res.load, res.contact_fraction, instantaneous_compliance(res),
+                           res.full_contact) if res.success else [])
     rec.update({"separation": res.separation, "success": res.success,
-                "message": res.message, "warnings": list(res.warnings)})
+                "message": res.message, "warnings": list(res.warnings) + slips})
     if res.success:
         rec.update({"max_pressure": res.max_pressure, "x_max_pressure": res.x_max_pressure,
                     "n_patches": res.n_patches,

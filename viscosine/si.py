@@ -11,11 +11,13 @@ relaxed modulus and the reference time τ_ref is 1 s, so the speed group is V k 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+import warnings as _warnings
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
 
+from . import protocol
 from .checks import real
 from .fields import Fields
 
@@ -35,6 +37,44 @@ class SIScales:
     amplitude: float    # h [m]
     tau: float          # the reference time τ_ref [s]: the creep time τ of the solid, else 1 s
     given: dict         # the SI inputs each group comes from, as passed (for refusals)
+    time_given: str | None = None  # "tau_creep" or "tau_relax" (the solid), None otherwise
+    nu: float | None = None        # Poisson's ratio
+
+    @property
+    def E_ref(self) -> float:
+        """The reference modulus [Pa]: E0 of the solid, a material's relaxed modulus."""
+        return self.estar * (1.0 - self.nu ** 2) if self.nu is not None else math.nan
+
+    def describe(self) -> dict:
+        """The scales as a self-explaining JSON object: each value, its ``units`` (key → unit)
+        and, for the standard linear solid, both times (``tau_creep`` and ``tau_relax`` =
+        τ E0/E∞) and which was given (``time_given``)."""
+        out = {"E_ref": self.E_ref, "plane_strain_modulus": self.estar, "nu": self.nu,
+               "wavelength": self.wavelength, "k": self.k, "amplitude": self.amplitude,
+               "tau_ref": self.tau}
+        units = dict(UNITS)
+        if self.ratio is not None:
+            out.update(ratio=self.ratio, tau_creep=self.tau, tau_relax=self.tau / self.ratio,
+                       time_given=self.time_given)
+            out["tau_ref_is"] = "tau_creep, the creep (retardation) time of eq. (2.3)"
+        else:
+            out["tau_ref_is"] = "1 s, the time unit of the material's series"
+        out["load_is"] = "p_inf (1 - nu^2)/E_ref"
+        out["speed_is"] = "V tau_ref k, k = 2 pi/wavelength"
+        out["units"] = {k: units[k] for k in out if k in units}
+        return out
+
+
+#: the unit of every SI key a record or a result carries ("-": a pure number)
+UNITS = {"E_ref": "Pa", "E0": "Pa", "Einf": "Pa", "plane_strain_modulus": "Pa", "nu": "-",
+         "wavelength": "m", "length": "m", "k": "1/m", "amplitude": "m", "tau_ref": "s",
+         "tau_creep": "s", "tau_relax": "s", "ratio": "-", "contact_halfwidth": "m",
+         "eccentricity": "m", "pressure_eccentricity": "m", "penetration": "m",
+         "mean_separation": "m", "separation": "m", "mean_pressure": "Pa",
+         "friction_stress": "Pa", "friction_coefficient": "-", "mu": "-", "mu_lateral": "-",
+         "max_pressure": "Pa", "x_max_pressure": "m", "full_contact_pressure": "Pa",
+         "threshold_speed": "m/s", "speed": "m/s", "contact_fraction": "-", "n_patches": "-",
+         "speed_group": "-", "load": "-"}
 
 
 #: why a bare ``tau`` is refused, and the two names to choose from (every SI door says it)
@@ -80,8 +120,9 @@ def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressur
     E0 = real("E0", E0, "a finite modulus > 0", lambda v: v > 0.0, unit="Pa")
     Einf = real("Einf", Einf, f"a finite modulus > E0 = {E0!r}", lambda v: v > E0, unit="Pa")
     tau = creep_time(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax)
-    return _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration,
-                   ratio=Einf / E0, given_ratio=Einf)
+    sc = _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration,
+                 ratio=Einf / E0, given_ratio=Einf)
+    return _replace(sc, time_given="tau_relax" if tau_relax is not None else "tau_creep")
 
 
 def material_scales(*, E_ref, tau_ref=1.0, nu, wavelength, amplitude, speed, mean_pressure=None,
@@ -117,7 +158,37 @@ def _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetratio
                    lambda v: 0.0 < v <= h, unit="m") / h
     given = {"load": mean_pressure, "penetration": penetration, "speed": speed,
              "ratio": given_ratio, "hk": amplitude}
-    return SIScales(ratio, h * k, V * tau * k, load, pen, k, estar, lam, h, tau, given)
+    return SIScales(ratio, h * k, V * tau * k, load, pen, k, estar, lam, h, tau, given, nu=nu)
+
+
+def _replace(sc, **kw):
+    return replace(sc, **kw)
+
+
+def slip_warnings(sc: SIScales, load, contact_fraction, j_plus, full_contact=False) -> list:
+    """`viscosine.protocol.unit_slips` of a result, named in the SI inputs: the mean pressure
+    and the modulus it is measured against, and the likely slip."""
+    found = protocol.unit_slips(load, contact_fraction, j_plus, full_contact)
+    p, e = load * sc.estar, sc.E_ref
+    what = "E0" if sc.ratio is not None else "E_ref (the relaxed modulus)"
+    out = []
+    if "strain" in found:
+        out.append(f"a mean pressure of {p:.3g} Pa with {what} = {e:.3g} Pa is "
+                   f"{found['strain']:.2g} × the instantaneous plane-strain modulus: far outside "
+                   "linear theory; the modulus in MPa given as Pa, or the pressure in the wrong unit?")
+    if "sliver" in found:
+        guess = "MPa given as Pa?" if p < 1e3 else "a pressure in the wrong unit?"
+        out.append(f"a mean pressure of {p:.3g} Pa with {what} = {e:.3g} Pa leaves a vanishing "
+                   f"sliver of contact (contact fraction {found['sliver']:.2g} < "
+                   f"{protocol.SLIVER:g}): {guess}")
+    return out
+
+
+def warn_slips(texts):
+    """Raise each of ``texts`` as a `viscosine.ViscosineWarning` (what the record carries)."""
+    from . import ViscosineWarning
+    for t in texts:
+        _warnings.warn(t, ViscosineWarning, stacklevel=3)
 
 
 # the SI input behind each dimensionless group, to name it when the group is out of range
@@ -181,6 +252,51 @@ class SIResult:
     plane_strain_modulus: float       # E0/(1 − ν²) [Pa]
     error_estimate: Any
     solution: Any
+    warnings: tuple = ()              # the solution's and the SI door's (a unit slip)
+    scales: Any = None                # the SIScales behind it
+
+    # the result protocol of every door (dimensionless already, or the solution's)
+    @property
+    def mu(self) -> float:
+        """μ, the friction coefficient (= ``friction_coefficient``)."""
+        return self.friction_coefficient
+
+    @property
+    def tau_f(self) -> float:
+        """τf [Pa] (= ``friction_stress``)."""
+        return self.friction_stress
+
+    @property
+    def contact_fraction(self) -> float:
+        """2a/λ (1 in full contact)."""
+        return float(self.solution.contact_fraction)
+
+    @property
+    def n_patches(self) -> int:
+        return int(self.solution.n_patches)
+
+    @property
+    def status(self) -> int:
+        return int(getattr(self.solution, "status", 0 if self.success else 1))
+
+    @property
+    def nodes(self):
+        """The BEM's panels per period (None on the semi-analytic road)."""
+        return getattr(self.solution, "nodes", None)
+
+    def scalars(self) -> dict:
+        """The SI scalars, keyed as `as_dict`'s ``si`` block (units in ``UNITS``)."""
+        return {k: getattr(self, k) for k in _SI_KEYS}
+
+    def as_dict(self) -> dict:
+        """The dimensionless record with an ``si`` block of these scalars, ``si_scales`` (the
+        scales, both times of the solid and which was given) and each block's ``units``."""
+        rec = self.solution.as_dict()
+        rec["warnings"] = list(self.warnings)
+        rec["si"] = protocol.plain(dict(self.scalars(), units={k: UNITS[k] for k in _SI_KEYS}))
+        if self.scales is not None:
+            rec["si_scales"] = protocol.plain(self.scales.describe())
+        return rec
 
     def fields(self, x=None) -> Fields:
         """σ [Pa], v [m] (into the body, from the deformed mean line) and gap [m] at x [m]
@@ -192,12 +308,27 @@ class SIResult:
                       edges=f.edges)
 
 
+#: the SI scalars of a line result, in the order of its record's ``si`` block
+_SI_KEYS = ("full_contact", "contact_halfwidth", "eccentricity", "pressure_eccentricity",
+            "penetration", "mean_separation", "mean_pressure", "friction_stress",
+            "friction_coefficient", "max_pressure", "x_max_pressure", "full_contact_pressure",
+            "threshold_speed", "wavelength", "amplitude", "plane_strain_modulus")
+UNITS["full_contact"] = "-"
+
+
 def result(sol, sc: SIScales, *, full_contact_load=None, threshold_speed=None) -> SIResult:
     """Build the SI result from a dimensionless one (the result protocol of both roads).
 
     ``full_contact_load`` is p̃FC(V) and ``threshold_speed`` V_th/V0, when the road knows them.
+    A load that looks like a unit slip (`slip_warnings`) is added to the result's
+    ``warnings`` and raised as a `viscosine.ViscosineWarning`.
     """
     k = sc.k
+    # a record's scalars (no contact fraction) carry their own warnings already
+    slips = (slip_warnings(sc, float(sol.load), float(sol.contact_fraction),
+                           protocol.instantaneous_compliance(sol), bool(sol.full_contact))
+             if sol.success and getattr(sol, "contact_fraction", None) is not None else [])
+    warn_slips(slips)
 
     def length(v):
         return None if v is None else float(v) / k
@@ -216,4 +347,5 @@ def result(sol, sc: SIScales, *, full_contact_load=None, threshold_speed=None) -
         full_contact_pressure=None if full_contact_load is None else full_contact_load * sc.estar,
         threshold_speed=None if threshold_speed is None else threshold_speed / (sc.tau * k),
         wavelength=sc.wavelength, amplitude=sc.amplitude, plane_strain_modulus=sc.estar,
-        error_estimate=getattr(sol, "error_estimate", None), solution=sol)
+        error_estimate=getattr(sol, "error_estimate", None), solution=sol,
+        warnings=tuple(getattr(sol, "warnings", ())) + tuple(slips), scales=sc)
