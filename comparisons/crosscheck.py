@@ -17,6 +17,7 @@ import sys
 from decimal import ROUND_CEILING, ROUND_FLOOR, ROUND_HALF_EVEN, Context
 from typing import NamedTuple
 
+from . import operating_point as op
 from . import roads, runner
 
 # (label, load, speed, ratio, hk); loads given as a fraction of p̃FC(V) where marked 'fc'
@@ -107,8 +108,8 @@ def _load(load, speed, ratio, hk):
 
 def specs(nodes, grid=GRID):
     """The BEM specs of the grid at one mesh, in grid order."""
-    return [runner.point_spec("bem", speed, load=_load(load, speed, ratio, hk), ratio=ratio, hk=hk,
-                              nodes=nodes) for _, load, speed, ratio, hk in grid]
+    return [op.at("bem", speed, load=_load(load, speed, ratio, hk), ratio=ratio, hk=hk,
+                  nodes=nodes) for _, load, speed, ratio, hk in grid]
 
 
 def differences(nodes, grid=GRID, run=runner.run):

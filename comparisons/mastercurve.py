@@ -50,13 +50,14 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from . import operating_point as op
 from ._errors import BadInput
 from ._io import check_output_dir, jsonable, stderr, write_text
 from .plots import mastercurve as figure
 from .progress import Progress
 
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
-DEFAULT_RTOL = 1e-3
+DEFAULT_RTOL = op.DEFAULTS["mastercurve_rtol"]
 #: the columns of points.csv (and the keys of each point in mastercurve.json)
 COLUMNS = ("temperature", "speed", "log10_aT", "reduced_speed", "success", "mu", "mu_error",
            "friction_stress", "contact_fraction", "load", "speed_group", "nodes", "seconds",
@@ -301,16 +302,16 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                              "they set the fit of a DMA file")
         base = _materials.from_model(material)
     si = {"nu": nu, "wavelength": wavelength, "amplitude": amplitude}
-    groups = runner.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base)
+    groups = op.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base)
     plan = []
     for T in temps:
         m = _materials.at_temperature(base, shift, shift_info, T, option=(
             "--wlf" if isinstance(shift, vm.WLF) else "--shift-table"))
         for V, w in zip(vs, groups["speed"]):
-            spec = dict.fromkeys(runner.SPEC_KEYS)
-            spec.update(solver="bem", load=groups["load"][0], speed=w, hk=groups["hk"],
-                        nodes=nodes, rtol=None if nodes is not None else rtol,
-                        material=m.info, _material=m, si=groups["si"])
+            spec = op.OperatingPoint("bem", load=groups["load"][0], speed=w, hk=groups["hk"],
+                                     nodes=nodes, rtol=None if nodes is not None else rtol,
+                                     material=m.info, si=groups["si"],
+                                     parsed={"material": m})
             plan.append((T, V, m.info["log10_aT"], spec))
         runner.validate(plan[-1][3])  # this temperature's material, before any work
     parameters = {"material": base.info, "shift": shift_info, "temperatures": temps,

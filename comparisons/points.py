@@ -11,6 +11,7 @@ import json
 import os
 import time
 
+from . import operating_point as op
 from . import runner
 from ._errors import BadInput, Failed
 from ._io import check_output_dir, stderr
@@ -77,7 +78,7 @@ def point(spec, fields=None) -> bool:
 def read_files(solver, files, *, profile=None, prony=None, material=None,
                material_options=None) -> dict:
     """Read (and check) each input file of a BEM sweep once, into ``files`` (option -> what
-    `runner.resolve` takes); a file already there (a --units SI material) is not read again.
+    `operating_point.build` takes); a file already there (a --units SI material) is not read again.
 
     Raises
     ------
@@ -87,8 +88,8 @@ def read_files(solver, files, *, profile=None, prony=None, material=None,
     for option, path in (("profile", profile), ("prony", prony), ("material", material)):
         if path is not None and solver == "bem" and option not in files and not (
                 option == "material" and prony is not None):
-            files[option] = (runner.read_input(option, path) if option != "material" else
-                             runner.read_material(path, **{
+            files[option] = (op.read_input(option, path) if option != "material" else
+                             op.read_material(path, **{
                                  k: v for k, v in (material_options or {}).items()
                                  if v is not None}))
     return files
@@ -143,7 +144,8 @@ def sweep(base, control, values, speeds, *, workers=None, scheduler=None, fields
         check_output_dir("--fields", fields, create=True)
 
     def spec_at(i):
-        return {**base, control: values[i // len(speeds)], "speed": speeds[i % len(speeds)]}
+        return base.replace(**{control: values[i // len(speeds)],
+                                "speed": speeds[i % len(speeds)]})
 
     specs = (spec_at(i) for i in range(total))
     fn = runner._run_with_fields if fields is not None else runner.run

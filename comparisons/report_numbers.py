@@ -20,7 +20,8 @@ import numpy as np
 
 from viscosine import Fields
 
-from . import roads, runner
+from . import operating_point as op
+from . import roads
 from .convergence import observed_order
 from .convergence import richardson as _richardson
 
@@ -44,11 +45,11 @@ CONV_POINTS = [("partial contact, p̃∞ = 0.3, V/V0 = 1", 0.3, 1.0),
 
 
 def bem_spec(load=None, speed=1.0, nodes=4096, penetration=None):
-    """The spec of a BEM run of the report (`comparisons.runner.point_spec`) at p̃∞ = ``load``
+    """The point of a BEM run of the report (`comparisons.operating_point.at`) at p̃∞ = ``load``
     or Δ/h = ``penetration``, V/V0 = ``speed``, on ``nodes`` panels per period."""
-    return runner.point_spec("bem", float(speed), load=None if load is None else float(load),
-                             penetration=None if penetration is None else float(penetration),
-                             ratio=RATIO, hk=HK, nodes=int(nodes))
+    return op.at("bem", float(speed), load=None if load is None else float(load),
+                 penetration=None if penetration is None else float(penetration),
+                 ratio=RATIO, hk=HK, nodes=int(nodes))
 
 
 TAMAAS_LOAD = 0.15
@@ -384,13 +385,10 @@ def layer_spec(load=None, speed=1.0, nodes=4096, d_over_lambda=None, foundation=
     (``layer``, read by `comparisons.roads`) and the amplitude ``hk``.  On the half-space
     (``d_over_lambda`` None) at the report's hk it *is* `bem_spec`, so that the section's
     half-space runs are the same store entries as the figures' above."""
-    spec = runner.point_spec("bem", float(speed), load=None if load is None else float(load),
-                             penetration=None if penetration is None else float(penetration),
-                             ratio=RATIO, hk=float(hk), nodes=int(nodes))
-    layer = layer_description(d_over_lambda, foundation)
-    if layer is not None:
-        spec["layer"] = layer
-    return spec
+    return op.at("bem", float(speed), load=None if load is None else float(load),
+                 penetration=None if penetration is None else float(penetration),
+                 ratio=RATIO, hk=float(hk), nodes=int(nodes),
+                 layer=layer_description(d_over_lambda, foundation))
 
 
 def full_contact_clears(d_over_lambda, foundation, p_fc, hk=HK):

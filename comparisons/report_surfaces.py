@@ -20,7 +20,8 @@ import time
 import numpy as np
 
 from . import report_numbers as numbers
-from . import roads, runner
+from . import operating_point as op
+from . import roads
 from .report_numbers import RATIO
 
 #: the bi-sinusoid k z = hk (cos kx + cos ky) with hk = 1: p̃_FC is 1 at rest, 3 at high speed
@@ -49,14 +50,11 @@ def _speeds(quick):
 
 
 def surface_spec(load, speed, nodes, surface, direction=0.0, penetration=None):
-    """The spec of a surface run of the report (`comparisons.runner`: ``surface`` and
+    """The spec of a surface run of the report (`comparisons.operating_point.at`: ``surface`` and
     ``direction`` beside the line's keys)."""
-    spec = runner.point_spec("bem", float(speed), load=None if load is None else float(load),
-                             penetration=None if penetration is None else float(penetration),
-                             ratio=RATIO, hk=None, nodes=int(nodes))
-    spec["surface"] = dict(surface)
-    spec["direction"] = float(direction)
-    return spec
+    return op.at("bem", float(speed), load=None if load is None else float(load),
+                 penetration=None if penetration is None else float(penetration),
+                 ratio=RATIO, nodes=int(nodes), surface=surface, direction=direction)
 
 
 def _seeded(seed):

@@ -37,6 +37,8 @@ import numpy as np
 
 from viscosine import Fields
 
+from . import operating_point as op
+
 #: Krylov tolerance of the suite's BEM solves (relative to h k): below the discretisation error
 #: at the finest mesh, so that the convergence study sees the mesh and not the linear solver
 #: (the default 1e-10 leaves Δ/h changes of ~1e-11 at N = 2^18)
@@ -198,8 +200,7 @@ def surface(description, parsed=None):
     aspect = description.get("aspect")
     aspect = 1.0 if aspect is None else aspect
     if kind == "bisinusoid":
-        hk = description.get("hk")
-        return bem.bisinusoid(1.0 if hk is None else hk, description.get("hk_y"), aspect)
+        return bem.bisinusoid(op.hk_of(description), description.get("hk_y"), aspect)
     if kind == "self_affine":
         kw = {k: description[k] for k in ("hurst", "rolloff", "short_cutoff", "long_cutoff",
                                           "rms_slope", "rms_height", "seed")
@@ -271,7 +272,7 @@ def analytic_solution(point):
     ``penetration``, ``speed``, ``ratio`` (default 3), ``hk`` (default 1)."""
     import analytic
     return analytic.solve(**point_controls(point), speed=float(point["speed"]),
-                          ratio=float(point.get("ratio", 3.0)), hk=float(point.get("hk", 1.0)))
+                          ratio=op.ratio_of(point), hk=op.hk_of(point))
 
 
 def fourier_solution(point, material):
@@ -288,7 +289,7 @@ def fourier_solution(point, material):
     return analytic.fourier_solve(**point_controls(point), speed=float(point["speed"]),
                                   creep=(float(material.J0), tuple(float(j) for j in material.J),
                                          tuple(float(t) for t in material.tau)),
-                                  hk=float(point.get("hk", 1.0)), require_resolved=False, **kw)
+                                  hk=op.hk_of(point), require_resolved=False, **kw)
 
 
 def bem_solution(point, nodes, problem):
@@ -374,7 +375,7 @@ def _surface_point_kwargs(point):
     ``direction``, ``load`` or ``penetration``, ``speed``, ``ratio``; ``layer`` optional) gives
     both surface solvers, as floats."""
     return dict(point_controls(point), speed=float(point["speed"]),
-                direction=float(point.get("direction", 0.0)))
+                direction=op.direction_of(point))
 
 
 def surface_solution(point, nodes):
@@ -384,7 +385,7 @@ def surface_solution(point, nodes):
     import bem
     kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
     return bem.solve_surface(**_surface_point_kwargs(point), surface=surface(point["surface"]),
-                             ratio=float(point.get("ratio", 3.0)), nodes=int(nodes), tol=BEM_TOL,
+                             ratio=op.ratio_of(point), nodes=int(nodes), tol=BEM_TOL,
                              **kw)
 
 
@@ -408,7 +409,7 @@ def surface_reference_solution(point, nodes):
     kw = {} if point.get("layer") is None else {"layer": _analytic_layer(point["layer"])}
     heights, aspect = surface_harmonics(point["surface"])
     return surface_reference.solve(**_surface_point_kwargs(point), heights=heights,
-                                   aspect=aspect, ratio=float(point.get("ratio", 3.0)),
+                                   aspect=aspect, ratio=op.ratio_of(point),
                                    nodes=tuple(int(n) for n in nodes), **kw)
 
 

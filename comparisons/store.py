@@ -24,7 +24,8 @@ import numpy as np
 from viscosine import Fields
 from viscosine.fields import WIDTH  # the cells of a non-uniform grid (optional)
 
-from . import gate, runner
+from . import gate
+from . import operating_point as op
 from ._errors import StoreError, one_line
 from ._io import temporary_name
 
@@ -35,7 +36,7 @@ SURFACE_FIELDS = ("x", "y", "pressure", "displacement", "gap")
 
 def key(spec):
     """The file stem of a spec: a hash of its JSON form."""
-    text = json.dumps(runner.public(spec), sort_keys=True)
+    text = json.dumps(op.public(spec), sort_keys=True)
     return hashlib.sha1(text.encode()).hexdigest()[:16]
 
 
@@ -128,7 +129,7 @@ class Store:
             names = FIELD_NAMES + ((WIDTH,) if data.get(WIDTH) is not None else ())
             self._atomic(self._path(k, "npz"), lambda fh: np.savez(
                 fh, **{n: np.asarray(data[n], dtype=float) for n in names}), "wb")
-        doc = {"spec": runner.public(spec), "ok": bool(out["ok"]), "record": out["record"],
+        doc = {"spec": op.public(spec), "ok": bool(out["ok"]), "record": out["record"],
                "error": out["error"], "seconds": out.get("seconds")}
         text = json.dumps(doc, allow_nan=False)
         self._atomic(self._path(k, "json"), lambda fh: fh.write(text), "w")
@@ -149,7 +150,7 @@ def _check_doc(doc, spec):
     """Why a stored JSON document cannot be used for `spec`, or None."""
     if not isinstance(doc, dict) or not {"spec", "ok", "record", "error"} <= set(doc):
         return "not a stored result (keys spec, ok, record, error expected)"
-    if doc["spec"] != runner.public(spec):
+    if doc["spec"] != op.public(spec):
         return "filed under this spec but holds another one"
     if not isinstance(doc["ok"], bool):
         return "ok is not true/false"

@@ -118,6 +118,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from . import operating_point as op
 from . import roads as _roads
 from ._errors import SuiteError
 from ._io import read_columns, temporary_name, write_text
@@ -291,11 +292,11 @@ def _problem(point, base=DATA):
     elif point.get("material"):
         material = case_material(point, base).prony
     else:
-        material = _roads.standard_linear_solid(point.get("ratio", 3.0))
+        material = _roads.standard_linear_solid(op.ratio_of(point))
     if point.get("profile"):
         profile = _roads.read_profile(Path(base) / point["profile"])
     else:
-        profile = _roads.sinusoid(point.get("hk", 1.0))
+        profile = _roads.sinusoid(op.hk_of(point))
     return profile, material
 
 
@@ -1019,7 +1020,7 @@ def surface_references(case):
                                                != 1.0):
             why = "a bi-sinusoid on a square cell over the half-space"
         if ref == "line" and (surf.get("hk_y") != 0.0
-                              or not math.cos(math.radians(p.get("direction", 0.0))) > 0.0):
+                              or not math.cos(math.radians(op.direction_of(p))) > 0.0):
             why = "a surface uniform in y (hk_y = 0) sliding with a component along +x"
         if why:
             raise SuiteError(f"case {case['name']}: reference {ref!r} is not allowed here: {why}")
@@ -1032,12 +1033,12 @@ def surface_references(case):
 def _lateral_vanishes(point) -> bool:
     """μ_lateral = 0 by the mirror about V: a bi-sinusoid (even in x and in y) sliding along
     an axis."""
-    d = float(point.get("direction", 0.0))
+    d = op.direction_of(point)
     return point["surface"].get("kind") == "bisinusoid" and d % 90.0 == 0.0
 
 
 def _hk(surf):
-    hk = 1.0 if surf.get("hk") is None else float(surf["hk"])
+    hk = op.hk_of(surf)
     return hk, hk if surf.get("hk_y") is None else float(surf["hk_y"])
 
 
@@ -1045,11 +1046,11 @@ def _exact_road(point, refs):
     """The exact road of a surface case: {key: value} of SURFACE_KEYS and its fields on x (a
     callable, or None), or (None, None) without one."""
     surf = point["surface"]
-    th = math.radians(float(point.get("direction", 0.0)))
+    th = math.radians(op.direction_of(point))
     if "closed_form" in refs:
         hk, hk_y = _hk(surf)
         cf = _roads.bisinusoid_full_contact(float(point["speed"]), math.degrees(th),
-                                            float(point.get("ratio", 3.0)), hk, hk_y)
+                                            op.ratio_of(point), hk, hk_y)
         load = float(point["load"])
         if not load >= cf["load_threshold"]:
             raise SuiteError(f"load {load!r} is below the full-contact load "
@@ -1059,7 +1060,7 @@ def _exact_road(point, refs):
     if "line" in refs:
         c, s = math.cos(th), math.sin(th)
         line = dict(_roads.point_controls(point), speed=float(point["speed"]) * c,
-                    ratio=float(point.get("ratio", 3.0)), hk=_hk(surf)[0])
+                    ratio=op.ratio_of(point), hk=_hk(surf)[0])
         sol = _roads.analytic_solution(line)
         if not sol.success:
             raise SuiteError(f"the semi-analytic line road failed: {sol.message}")
@@ -1289,7 +1290,7 @@ def write_surface_fields(path, case, fields):
     try:
         with open(tmp, "wb") as fh:
             np.savez_compressed(fh, **arrays, load=float(p["load"]), speed=float(p["speed"]),
-                                direction=float(p.get("direction", 0.0)))
+                                direction=op.direction_of(p))
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

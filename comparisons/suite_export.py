@@ -18,6 +18,7 @@ import math
 import shutil
 from pathlib import Path
 
+from . import operating_point as op
 from . import roads as _roads
 from ._io import write_text
 from .fields import PATCH_KEYS
@@ -72,7 +73,7 @@ def _prony_text(point) -> str:
         lines.append(f"J0 {float(pr.J0)!r}")
         lines += [f"{float(j)!r} {float(t)!r}" for j, t in zip(pr.J, pr.tau)]
         return "\n".join(lines) + "\n"
-    r = float(point.get("ratio", 3.0))
+    r = op.ratio_of(point)
     return ("# standard linear solid, E_inf/E0 = %r: J(t) = J0 - J1 exp(-t/tau)\n"
             "# compliances in 1/E0, times in the creep time tau\n"
             "J0 1.0\n%r 1.0\n" % (r, 1.0 - 1.0 / r))
@@ -81,7 +82,7 @@ def _prony_text(point) -> str:
 def _profile_text(point) -> str:
     if point.get("profile"):
         return (DATA / point["profile"]).read_text(encoding="utf-8")
-    hk = float(point.get("hk", 1.0))
+    hk = op.hk_of(point)
     m = 64  # the trigonometric interpolant of 64 samples is exactly hk cos(2 pi x)
     lines = [f"# sinusoid k*y = {hk!r} cos(2 pi x/lambda), sampled at x/lambda = j/{m} - 1/2",
              "x_over_lambda,ky"]
@@ -101,7 +102,7 @@ def _inputs(case, suite) -> dict:
         d["profile"] = {"kind": "samples (trigonometric interpolant)", "file": "profile.csv",
                         "description": about}
     else:
-        d["profile"] = {"kind": "sinusoid", "hk": float(p.get("hk", 1.0)), "file": "profile.csv"}
+        d["profile"] = {"kind": "sinusoid", "hk": op.hk_of(p), "file": "profile.csv"}
     units = ("load = p (1 - nu^2)/E_ref; speed = V tau_ref k; lengths in wavelengths "
              "(x/lambda, crest at 0, sliding toward +x), heights k*y; compliances in "
              "1/E_ref, times in tau_ref")
@@ -120,7 +121,7 @@ def _inputs(case, suite) -> dict:
                          "fit": info["fit"], "figure": "material.png"}
         units += f" (E_ref = {info['E_ref_is']}; tau_ref = {info['tau_ref_is']})"
     else:
-        d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
+        d["material"] = {"kind": "standard linear solid", "ratio": op.ratio_of(p),
                          "file": "prony.txt"}
     if not p.get("material"):
         units += " (E_ref = E0, tau_ref = tau: the creep time)"
@@ -176,7 +177,7 @@ def layer_inputs(case) -> dict:
            "layer_factor_mode_1": float(lay.factor([1.0])[0]),
            "definition": LAYER_DEFINITION, "approach": APPROACH_DEFINITION}
     if not p.get("profile"):
-        out["thickness_over_h"] = float(lay.thickness) / float(p.get("hk", 1.0))
+        out["thickness_over_h"] = float(lay.thickness) / op.hk_of(p)
     mean = case["certified"]["exact"].get("mean_displacement")
     if mean is not None:
         out["mean_displacement"] = mean
@@ -280,11 +281,11 @@ def _surface_inputs(case, suite) -> dict:
          "geometry": "surface", "control": "load" if p.get("load") is not None else "penetration"}
     d.update(_roads.point_controls(p))
     d["speed"] = float(p["speed"])
-    d["direction"] = float(p.get("direction", 0.0))
+    d["direction"] = op.direction_of(p)
     d["surface"] = dict({k: v for k, v in p["surface"].items() if v is not None},
                         file="surface.csv",
                         amplitude_k_h_ref=float(_roads.surface(p["surface"]).amplitude))
-    d["material"] = {"kind": "standard linear solid", "ratio": float(p.get("ratio", 3.0)),
+    d["material"] = {"kind": "standard linear solid", "ratio": op.ratio_of(p),
                      "file": "prony.txt"}
     d["units"] = ("load = p (1 - nu^2)/E0, the mean pressure over the cell; speed = V tau k, "
                   "k = 2 pi/Lx; direction theta in degrees from +x, counter-clockwise; "

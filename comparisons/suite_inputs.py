@@ -14,6 +14,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import operating_point as op
 from . import roads as _roads
 
 #: the suite's data: ``suite.json``, ``profiles/``, ``materials/``, ``fields/``
@@ -43,7 +44,7 @@ class ProfileShape:
             self.sinusoid = False
         else:
             self.n = np.array([1.0])
-            self.c = np.array([float(point.get("hk", 1.0)) + 0j])
+            self.c = np.array([op.hk_of(point) + 0j])
             self.sinusoid = True
         self.amplitude = float(self.max_value())
 

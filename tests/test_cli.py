@@ -17,6 +17,7 @@ import pytest
 import analytic
 import bem
 from comparisons import cli, fields, points, runner
+from comparisons import operating_point as op
 
 KEYS = {"solver", "load", "speed", "ratio", "hk", "full_contact", "contact_fraction", "ka", "ke",
         "ke_hat", "penetration", "tau_f", "mu", "version", "success", "message", "warnings",
@@ -180,7 +181,7 @@ def test_an_invalid_result_is_never_printed(changes, fragment, monkeypatch, caps
 
 
 def test_null_is_only_accepted_where_it_means_something():
-    spec = runner.point_spec("analytic", 1.0, load=0.3)
+    spec = op.at("analytic", 1.0, load=0.3)
     rec = analytic.solve(load=0.3, speed=1.0).as_dict()
     rec.update(n_patches=1, success=True)
     assert runner.check_record(rec, spec) is None
@@ -249,7 +250,7 @@ def test_warnings_go_to_stderr_one_line_each_and_the_result_is_printed(monkeypat
 def test_a_fields_file_that_cannot_be_written_is_status_1(monkeypatch, tmp_path, capsys):
     def refuse(src, dst):
         raise OSError(28, "No space left on device")
-    monkeypatch.setattr(runner.os, "replace", refuse)
+    monkeypatch.setattr("os.replace", refuse)  # the one atomic writer's rename
     rc, out, err = _run(capsys, "point", "--solver", "analytic", "--load", "0.3", "--speed", "1",
                         "--fields", str(tmp_path / "f.csv"))
     assert rc == 1 and out == "" and "No space left on device" in err
@@ -263,7 +264,7 @@ def test_fields_are_written_atomically_under_a_unique_temporary_name(monkeypatch
     def spy(src, dst):
         seen.append(os.path.basename(src))
         return real(src, dst)
-    monkeypatch.setattr(runner.os, "replace", spy)
+    monkeypatch.setattr("os.replace", spy)
     f = analytic.solve(load=0.3, speed=1.0).fields(np.arange(16) / 16 - 0.5)
     fields.write_fields_csv(tmp_path / "a.csv", f)
     fields.write_fields_csv(tmp_path / "a.csv", f)

@@ -7,6 +7,7 @@ import sys
 import pytest
 
 from comparisons import _cluster, cli, report, runner
+from comparisons import operating_point as op
 from comparisons.store import Store
 
 distributed = pytest.importorskip("distributed")
@@ -93,7 +94,7 @@ def test_sweep_on_a_dask_cluster_returns_exactly_the_local_sweep(cluster, monkey
 
 
 def test_report_runs_on_a_dask_cluster(cluster, tmp_path, monkeypatch):
-    jobs = [(runner.point_spec("bem", s, load=0.3, nodes=64), s == 1.0) for s in (0.5, 1.0)]
+    jobs = [(op.at("bem", s, load=0.3, nodes=64), s == 1.0) for s in (0.5, 1.0)]
     monkeypatch.setattr(report, "bem_runs", lambda cfg: list(jobs))
     monkeypatch.setattr(report, "tamaas_runs", lambda cfg: [])
     st = Store(str(tmp_path))

@@ -18,6 +18,7 @@ import pytest
 import analytic
 import bem
 from comparisons import fields, runner, suite
+from comparisons import operating_point as op
 from conftest import ROUNDOFF
 from viscosine import Fields
 
@@ -229,7 +230,7 @@ def test_a_window_result_s_fields_tile_the_period_with_its_panels(tmp_path):
     assert abs(f.mean("pressure") / r.load - 1.0) <= ROUNDOFF
     # the runner answers it, and its cells survive the results store and the CSV
     from comparisons.store import Store
-    spec = runner.resolve("bem", load=1e-6, speed=1.0)
+    spec = op.build("bem", load=1e-6, speed=1.0)
     out = runner.run(spec, fields=True, deep=True)
     assert out["ok"], out["error"]
     st = Store(str(tmp_path / "store"), note=lambda _: None)

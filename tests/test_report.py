@@ -7,6 +7,7 @@ import sys
 
 import pytest
 
+from comparisons import operating_point as op
 from comparisons import report
 
 
@@ -175,7 +176,7 @@ def test_runs_on_a_scheduler_are_credited_to_its_address(tmp_path, monkeypatch):
     class FakeCluster(_cluster.SerialExecutor):
         workers = 3
     monkeypatch.setattr(_cluster, "executor", lambda workers, scheduler: FakeCluster())
-    jobs = [(runner.point_spec("bem", 1.0, load=0.3, nodes=64), False)]
+    jobs = [(op.at("bem", 1.0, load=0.3, nodes=64), False)]
     st = Store(str(tmp_path))
     _, where = report.execute(report.config(True), st, False, "tcp://10.0.0.1:8786", jobs=jobs)
     assert where == "Dask scheduler tcp://10.0.0.1:8786 (3 workers)"

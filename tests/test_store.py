@@ -8,11 +8,12 @@ import os
 import numpy as np
 import pytest
 
+from comparisons import operating_point as op
 from comparisons import report, runner
 from comparisons.store import Store, StoreError, key
 
-SPEC = runner.point_spec("bem", 1.0, load=0.3, nodes=64)
-OTHER = runner.point_spec("bem", 2.0, load=0.3, nodes=64)
+SPEC = op.at("bem", 1.0, load=0.3, nodes=64)
+OTHER = op.at("bem", 2.0, load=0.3, nodes=64)
 
 
 @pytest.fixture(scope="module")
@@ -145,7 +146,7 @@ def test_two_processes_writing_one_folder_never_collide(tmp_path, solved):
 
 
 def test_report_resume_reruns_only_what_is_missing_or_broken(tmp_path, monkeypatch, capsys):
-    jobs = [(runner.point_spec("bem", s, load=0.3, nodes=64), s == 1.0) for s in (0.5, 1.0, 2.0)]
+    jobs = [(op.at("bem", s, load=0.3, nodes=64), s == 1.0) for s in (0.5, 1.0, 2.0)]
     monkeypatch.setattr(report, "bem_runs", lambda cfg: list(jobs))
     monkeypatch.setattr(report, "tamaas_runs", lambda cfg: [])
     cfg = report.config(True, workers=1)

@@ -60,10 +60,24 @@ def shown(value) -> str:
     return text
 
 
+class Refusal(ValueError):
+    """A refused input: the ValueError `bad` makes, carrying what it refuses, so that a front
+    door can name the input as its user typed it (an option, a keyword) without reading the
+    text back: ``name``, ``value``, ``allowed`` and ``unit`` (None without one)."""
+
+    def __init__(self, name, value, allowed, unit=None):
+        tail = f" [{unit}]" if unit else ""
+        super().__init__(f"{name}={shown(value)} is not allowed: {allowed}{tail}")
+        self.name, self.value, self.allowed, self.unit = name, value, allowed, unit
+
+    def __reduce__(self):  # pickled across processes with its fields
+        return (type(self), (self.name, self.value, self.allowed, self.unit))
+
+
 def bad(name, value, allowed, unit=None) -> ValueError:
-    """The ValueError that refuses ``name=value``, saying what is allowed (``[unit]`` after)."""
-    tail = f" [{unit}]" if unit else ""
-    return ValueError(f"{name}={shown(value)} is not allowed: {allowed}{tail}")
+    """The ValueError (a `Refusal`) that refuses ``name=value``, saying what is allowed
+    (``[unit]`` after)."""
+    return Refusal(name, value, allowed, unit)
 
 
 def real(name, value, allowed, test=None, *, unit=None, kind=False) -> float:

@@ -8,7 +8,8 @@ BEM sweep (default 2000 points at N = 4096) in this process, in two local proces
 two-worker local Dask cluster, and checks that all three return the same records in the same
 order.  `--honesty` (`trust`), `--materials` (`materials`) and `--accepted` (`accepted`) are
 the studies of the BEM's error estimates, of broad Prony spectra and of the semi-analytic road
-over its accepted inputs; `--surfaces` (`surfaces`) the cost of the surface BEM beside
+over its accepted inputs; `--near-transition` (`near_transition`) the BEM just below the
+full-contact load through the command line; `--surfaces` (`surfaces`) the cost of the surface BEM beside
 Tamaas's elastic solver and its adaptive default.  Every table says how loaded the machine was (load average).
 """
 from __future__ import annotations
@@ -74,12 +75,12 @@ def _load_average():
 
 def cluster_specs(points=2000, nodes=4096):
     """A BEM sweep of `points` points at a pinned mesh: 40 loads × speeds, log-spaced."""
-    from .. import runner
+    from .. import operating_point as op
     nload = min(40, points)
     nspeed = max(1, points // nload)
     loads = np.logspace(-2, 0, nload)               # partial and full contact at ratio 3, hk 1
     speeds = np.logspace(-2, 2, nspeed)
-    return [runner.point_spec("bem", float(s), load=float(p), nodes=nodes)
+    return [op.at("bem", float(s), load=float(p), nodes=nodes)
             for p in loads for s in speeds]
 
 
@@ -148,6 +149,10 @@ def run(args):
         from . import surfaces
         surfaces.run(12 if args.max_log2n is None else args.max_log2n)
         return 0
+    if args.near_transition:
+        from . import near_transition
+        return near_transition.run(100 if args.points is None else args.points,
+                                   near_transition.SEED if args.seed is None else args.seed)
     if args.accepted:
         from . import accepted
         return accepted.measure(1000 if args.points is None else args.points,

@@ -4,7 +4,7 @@
 Prony materials of the kind rubbers have (8 … 64 terms, retardation times over 2 … 20 decades,
 E∞/E0 up to 1e4; four spectrum shapes: log-normal, flat box, power law, two peaks), each at a
 random speed V/V0 = 1e-8 … 1e8 and load p̃ = 1e-3 … 3 (hk = 1, log-uniform).  Each point goes the
-way of ``python -m comparisons point --solver bem --prony FILE`` (`runner.resolve` with the
+way of ``python -m comparisons point --solver bem --prony FILE`` (`operating_point.build` with the
 creep file written, `runner.run` with its last line of defence) at the adaptive default, and the
 JSON record a user sees is judged against `analytic.fourier_solve`, a dense Fourier-collocation
 solver that shares no code with the BEM (run with ``require_resolved=False``: its own estimate
@@ -104,8 +104,9 @@ def _record(spec_kw):
     """One point through the front door: (record or None, error, seconds)."""
     import json
 
+    from .. import operating_point as op
     from .. import runner
-    spec = runner.resolve("bem", **spec_kw)
+    spec = op.build("bem", **spec_kw)
     t0 = time.perf_counter()
     res = runner.run(spec, deep=True)
     sec = time.perf_counter() - t0

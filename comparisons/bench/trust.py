@@ -11,7 +11,7 @@ printed as soon as it is done, so an interrupted run keeps what it finished):
   (absolute) against the BEM's own ``error_estimate``; for the adaptive default, whether any
   answered point is off by more than 10 × rtol and how many points are refused.
 * ``front door`` (``--honesty --front-door``): the same sample, but each point goes the way of
-  ``python -m comparisons point --solver bem`` (`runner.resolve` → `runner.run`, the last line
+  ``python -m comparisons point --solver bem`` (`operating_point.build` → `runner.run`, the last line
   of defence included) and the JSON record a user would see is judged: answered or refused, its
   true errors against the semi-analytic road and its own ``error_estimate``.  For each answered
   point it also says whether the gate as it was before the fields carried their cells (a plain
@@ -224,11 +224,12 @@ def front_door_point(point, rtol=None):
     import json
 
     from .. import gate, runner
+    from .. import operating_point as op
     ref = analytic.solve(**point)
     row = {"point": point, "reference": bool(ref.success)}
     if not ref.success:
         return row
-    spec = runner.resolve("bem", load=point["load"], speed=point["speed"], ratio=point["ratio"],
+    spec = op.build("bem", load=point["load"], speed=point["speed"], ratio=point["ratio"],
                           hk=point["hk"], rtol=rtol, fields=True)
     t0 = time.perf_counter()
     res = runner.run(spec, fields=True, deep=True)

@@ -7,6 +7,7 @@ import argparse
 import math
 import re
 
+from .. import operating_point as op
 from .. import runner
 from .._errors import BadInput, Failed
 from .._io import check_output_dir, check_output_file, stderr
@@ -152,7 +153,7 @@ def solver_options(p, several):
                         "points of --fields (default 1024), only with --fields")
     p.add_argument("--rtol", type=number, action=Once, metavar="T",
                    help="BEM without --nodes: refine until every estimated error is below T "
-                        f"(default {runner.DEFAULTS['rtol']:g})")
+                        f"(default {op.DEFAULTS['rtol']:g})")
     p.add_argument("--max-nodes", type=integer, action=Once, metavar="M",
                    help="BEM without --nodes: the finest mesh the refinement may reach")
     p.add_argument("--profile", action=Once, metavar="FILE",
@@ -241,10 +242,10 @@ def surface_options(p):
                    help="self-affine: seed of the random phases (default 0)")
 
 
-#: the self-affine surface's options and the keywords of bem.self_affine behind them
-_SELF_AFFINE = {"hurst": "--hurst", "rolloff": "--rolloff", "short_cutoff": "--short-cutoff",
-                "long_cutoff": "--long-cutoff", "rms_slope": "--rms-slope",
-                "rms_height": "--rms-height", "seed": "--seed"}
+#: the self-affine surface's parameters (keywords of bem.self_affine; options in
+#: `operating_point.PARAMETERS`)
+_SELF_AFFINE = ("hurst", "rolloff", "short_cutoff", "long_cutoff", "rms_slope", "rms_height",
+                "seed")
 
 
 def surface_description(args):
@@ -255,13 +256,12 @@ def surface_description(args):
     if args.surface is None:
         extra = [k for k, v in given.items() if v is not None]
         if extra:
-            name = _SELF_AFFINE.get(extra[0], "--" + extra[0].replace("_", "-"))
+            name = op.option(extra[0])
             raise BadInput(f"{name} is not allowed without --surface: an option of a surface "
                            "(three-dimensional contact)")
         return None
     if args.solver != "bem":
-        raise BadInput(f"--surface {args.surface} is not allowed here: a BEM option (the "
-                       "semi-analytic road solves the line contact; use --solver bem)")
+        raise op.bem_only("surface", args.surface)
     if args.profile is not None:
         raise BadInput("--profile is not allowed with --surface: the surface replaces the "
                        "profile")
@@ -270,7 +270,7 @@ def surface_description(args):
     if kind == "bisinusoid":
         wrong = [k for k in _SELF_AFFINE if given[k] is not None]
         if wrong:
-            raise BadInput(f"{_SELF_AFFINE[wrong[0]]} is not allowed with --surface bisinusoid: "
+            raise BadInput(f"{op.option(wrong[0])} is not allowed with --surface bisinusoid: "
                            "an option of --surface self-affine")
         desc.update(kind="bisinusoid", hk=args.hk, hk_y=given["hk_y"])
     elif kind == "self-affine":
@@ -283,7 +283,7 @@ def surface_description(args):
         if args.hk is not None or given["hk_y"] is not None or any(
                 given[k] is not None for k in _SELF_AFFINE):
             extra = "--hk" if args.hk is not None else "--hk-y" if given["hk_y"] is not None \
-                else next(_SELF_AFFINE[k] for k in _SELF_AFFINE if given[k] is not None)
+                else next(op.option(k) for k in _SELF_AFFINE if given[k] is not None)
             raise BadInput(f"{extra} is not allowed with --surface FILE: the file fixes the "
                            "surface")
         desc.update(kind="file", path=kind)
@@ -339,9 +339,10 @@ def check_workers(args):
 
 
 def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=None):
-    """The spec of point's and sweep's options (`runner.resolve`: defaults, what applies)."""
+    """The `OperatingPoint` of point's and sweep's options (`operating_point.build`: defaults,
+    what applies)."""
     surface = surface_description(args)
-    return runner.resolve(args.solver, load=load, penetration=penetration, speed=speed,
+    return op.build(args.solver, load=load, penetration=penetration, speed=speed,
                           ratio=args.ratio, hk=None if surface else args.hk, nodes=args.nodes,
                           rtol=args.rtol, surface=surface, direction=args.direction,
                           max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
@@ -354,12 +355,10 @@ def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=Non
 def layer_options(args, si):
     """``{"thickness_over_wavelength", "foundation", "nu"}`` of --thickness, --foundation and
     --nu (None without --thickness); with --units SI the thickness [m] over the wavelength.
-    The values as given: `runner.resolve` and the BEM's Layer check them."""
+    The values as given: `operating_point.build` and the BEM's Layer check them."""
     if args.solver == "analytic" and (args.thickness is not None or
                                       args.foundation is not None):
-        raise BadInput(f"--{'thickness' if args.thickness is not None else 'foundation'} is not "
-                       "allowed here: a BEM option (the semi-analytic road solves the "
-                       "half-space; use --solver bem)")
+        raise op.bem_only("thickness" if args.thickness is not None else "foundation")
     if args.thickness is None:
         if args.foundation is not None:
             raise BadInput(f"--foundation {args.foundation} is not allowed without --thickness: "
@@ -379,7 +378,7 @@ def layer_options(args, si):
                            "[m] (--units SI)")
         deep = [v for v in (args.penetration if isinstance(args.penetration, list)
                              else [args.penetration]) if v is not None]
-        if deep and max(deep) * si["amplitude"] >= d:
+        if deep and not op.penetration_clears_layer(max(deep), si["amplitude"], d):
             raise BadInput(f"--penetration {max(deep) * si['amplitude']!r} is not allowed: a "
                            f"penetration the layer can take: Δ < d = {d!r} [m]; deeper, the "
                            "indenter would reach the foundation")
@@ -410,16 +409,15 @@ def units_si(args, files):
     material = None
     if args.material is not None:
         if args.solver != "bem":
-            raise BadInput("--material is not allowed here: a BEM option (the semi-analytic road "
-                           "solves the sinusoid on the standard linear solid; use --solver bem)")
+            raise op.bem_only("material")
         opts = {k: v for k, v in material_options(args).items() if v is not None}
-        files["material"] = runner.read_material(args.material, **opts, si=True)
+        files["material"] = op.read_material(args.material, **opts, si=True)
         material = files["material"][1]
     several = isinstance(args.speed, list)
 
     def listed(v):
         return None if v is None else (v if several else [v])
-    out = runner.resolve_si(args.solver, given, loads=listed(args.load),
+    out = op.resolve_si(args.solver, given, loads=listed(args.load),
                             penetrations=listed(args.penetration), speeds=listed(args.speed),
                             material=material)
     for key in ("load", "penetration", "speed"):
@@ -450,39 +448,16 @@ def _surface_si(args, files):
     if args.wavelength is None:
         raise BadInput("--wavelength is missing: with --units SI and --surface FILE it is the "
                        "cell's side Lx [m] (the file's heights are in metres)")
-    info, surface = runner.read_input("surface", args.surface, units="SI",
+    info, surface = op.read_input("surface", args.surface, units="SI",
                                       length=args.wavelength)
     files["surface"] = (info, surface)
     args.amplitude = surface.amplitude / (2.0 * math.pi / args.wavelength)
 
 
 def material_options(args):
-    return {"temperature": args.temperature, "wlf": args.wlf, "shift_table": args.shift_table,
-            "max_residual": args.max_residual, "per_decade": args.per_decade}
+    return {k: getattr(args, k) for k in op.MATERIAL_OPTIONS}
 
 
 def validate(spec):
-    try:
-        runner.validate(spec)
-    except BadInput as exc:
-        text = _option_names(str(exc))
-        if text.startswith("--thickness is not allowed") and spec.get("layer"):
-            d = spec["layer"]["thickness_over_wavelength"]
-            text = f"--thickness (d/λ) {d!r} is not allowed" + text[len("--thickness is not allowed"):]
-        raise BadInput(text) from None
-
-
-def _option_names(text):
-    """'max_nodes=…' in a road's message becomes '--max-nodes …' (the option the user typed)."""
-    m = re.match(r"(\w+)=(\S+) is not allowed", text)
-    if m and m.group(1) in ("load", "penetration", "speed", "ratio", "hk", "nodes", "rtol",
-                            "max_nodes", "foundation", "nu", "direction", "hk_y", "aspect",
-                            "hurst", "rolloff", "short_cutoff", "long_cutoff", "rms_slope",
-                            "rms_height", "seed"):
-        return f"--{m.group(1).replace('_', '-')} {m.group(2)}{text[m.end(2):]}"
-    if m and m.group(1) == "thickness_over_wavelength":
-        return f"--thickness (d/λ) {m.group(2)}{text[m.end(2):]}"
-    m = re.match(r"layer=Layer\(.*?\) is not allowed", text)
-    if m:  # the layer as a whole: its thickness is the option at fault
-        return "--thickness is not allowed" + text[m.end():]
-    return text
+    """`runner.validate` of a point built from the command line: a refusal names the option."""
+    runner.validate(spec, op.CLI)

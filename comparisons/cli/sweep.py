@@ -41,9 +41,9 @@ def run(args):
     base = resolve(args, speed=speeds[0], files=files, si=si, **{control: values[0]})
     # every input is checked before any work; the ranges are per input, so each value once
     for v in dict.fromkeys(values):
-        validate({**base, control: v})
+        validate(base.replace(**{control: v}))
     for s in dict.fromkeys(speeds):
-        validate({**base, "speed": s})
+        validate(base.replace(speed=s))
     sweep_outputs.check(args.csv, args.plot)
     with sweep_outputs.Outputs(args.csv, args.plot, control=control, n_speeds=len(speeds),
                                si=si is not None, surface=base.get("surface") is not None) as out:

@@ -5,9 +5,13 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
+from viscosine.checks import Refusal
+
+from .. import operating_point as op
 from .. import roads
 from .. import suite as _suite
 from .._errors import BadInput, bad_input
+from .._errors import one_line as _one_line
 from .._io import read_text
 
 
@@ -75,8 +79,11 @@ def check_point(point, option_prefix="--"):
             read_text("--" + k, path, f"a {k} file (see bem.read_{k})")
             try:
                 reader(path)
+            except Refusal as exc:  # what the reader refuses, without its parameter's name
+                raise bad_input("--" + k, path, exc.allowed,
+                                f"the format of bem.read_{k}") from None
             except ValueError as exc:
-                raise bad_input("--" + k, path, str(exc).split(": ", 1)[-1],
+                raise bad_input("--" + k, path, _one_line(exc),
                                 f"the format of bem.read_{k}") from None
     return point
 
@@ -107,7 +114,8 @@ def check_layer(layer, option="layer", point=None):
                         f"lowest mode allows at most {lay.finest_nodes} panels)",
                         f"a layer that allows {STUDY_FINEST} panels (thicker)")
     pen, hk = (point or {}).get("penetration"), (point or {}).get("hk")
-    if pen is not None and hk is not None and float(pen) * float(hk) >= lay.thickness:
+    if pen is not None and hk is not None and not op.penetration_clears_layer(pen, hk,
+                                                                               lay.thickness):
         raise bad_input(option, layer, f"the penetration Δ/h = {pen!r} would reach the "
                         f"foundation (k d/hk = {lay.thickness / float(hk):.6g})",
                         "Δ/h < k d/hk")
@@ -115,14 +123,9 @@ def check_layer(layer, option="layer", point=None):
 
 
 def complete(point):
-    """The operating point without the options not given, with the defaults E∞/E0 = 3 and
-    hk = 1 where no file replaces them, and its files' paths absolute."""
-    point = dict(point)
-    if not point.get("prony") and point.get("ratio") is None:
-        point["ratio"] = 3.0
-    if not point.get("profile") and point.get("hk") is None:
-        point["hk"] = 1.0
-    point = {k: v for k, v in point.items() if v is not None}
+    """The operating point without the options not given, with the defaults
+    (`comparisons.operating_point.complete_case`), and its files' paths absolute."""
+    point = op.complete_case(point)
     for k in ("profile", "prony"):
         if point.get(k):
             point[k] = str(Path(point[k]).resolve())

@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .. import operating_point as op
 from .. import roads
 from .._errors import bad_input
 from ..fields import MIN_POINTS, count_patches, true_runs
@@ -190,7 +191,7 @@ def scalars_from_fields(fields, point, surf):
     (`surface_at`)."""
     p = fields["pressure"]
     load = float(np.mean(p))
-    th = math.radians(float(point.get("direction", 0.0)))
+    th = math.radians(op.direction_of(point))
     c, s = math.cos(th), math.sin(th)
     along = surf["slope_x"] * c + surf["slope_y"] * s
     across = -surf["slope_x"] * s + surf["slope_y"] * c

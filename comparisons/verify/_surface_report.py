@@ -13,6 +13,7 @@ import numpy as np
 import viscosine
 
 from .. import _html
+from .. import operating_point as op
 from .._io import jsonable, write_text
 from ..plots import surfaces as _plots
 from . import _surface_fields
@@ -88,7 +89,7 @@ def write_report(folder, ev, point, reference, results, label, inputs, case, fig
     best = sorted(results, key=lambda r: r.nodes or 0)[-1]
     if figures and best.fields is not None:
         _plots.write_pressure_map(os.path.join(folder, "pressure.png"), best.fields,
-                                  float(point.get("direction", 0.0)),
+                                  op.direction_of(point),
                                   caption=f"{label}, N = {ev['nodes']}")
         figs.append(("pressure.png", f"σ of {label} on its grid (white: the contact outline; "
                                      "arrow: V)"))
