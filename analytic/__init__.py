@@ -11,16 +11,19 @@ are the dimensionless groups: load p̃∞ = p∞(1 − ν²)/E0, speed V/V0 = V�
 `ACCEPTED` lists the range of each and why; a nonzero speed must also be at least
 `SPEED_MIN` (0 itself is the elastic limit).  `solve_si` is a thin SI front on top.
 
+The subpackage `analytic.references` holds codes that are not the paper's road: the Fourier
+reference (`fourier_solve`, re-exported here under its public name), the surface reference and
+Persson's theory; it shares no code with this road (see its docstring).
+
 This package never imports `bem` (the two roads are independent).
 """
 from viscosine import Fields
 
 from ._accepted import ACCEPTED, SPEED_MIN, validate
-from ._layer import layer_factor
 from ._result import Patch, Solution
 from .dimensional import solve_si
-from .fourier import fourier_solve
 from .full_contact import modulus, threshold_speed, transition_load
+from .references import fourier_solve, layer_factor  # public names of analytic.references
 from .solver import solve, sweep
 
 __all__ = ["ACCEPTED", "Fields", "Patch", "SPEED_MIN", "Solution", "fourier_solve", "layer_factor",

@@ -250,7 +250,7 @@ def persson(load, speed, spectrum, ratio):
     """Persson's theory (``analytic.persson``) on a self-affine spectrum (``hurst``,
     ``rolloff``, ``short_cutoff``, ``rms_slope`` of a surface description): (μ, contact
     fraction); RuntimeError when its quadrature did not meet its own bound."""
-    from analytic import persson as theory
+    from analytic.references import persson as theory
     kw = {k: spectrum[k] for k in ("hurst", "rolloff", "short_cutoff", "long_cutoff",
                                    "rms_slope", "rms_height") if spectrum.get(k) is not None}
     res = theory.solve(load=load, speed=speed, ratio=ratio, **kw)
@@ -307,7 +307,7 @@ def full_contact_load(speed, ratio, hk, layer_description=None):
     """p̃FC(V) of the sinusoid on the standard linear solid ``ratio``, on the half-space or on a
     layer (a plain description, see `layer`): the closed form ``analytic.full_contact``
     (Appendix B; on a layer mode 1 carries the factor S(kd))."""
-    from analytic.fourier import full_contact
+    from analytic.references.fourier import full_contact
     kw = {} if layer_description is None else {"layer": _analytic_layer(layer_description)}
     return float(full_contact(float(speed), hk=float(hk), ratio=float(ratio),
                                        **kw)["load_threshold"])
@@ -363,8 +363,9 @@ def source_hash() -> str:
     import bem
     h = hashlib.sha256()
     for pkg in (analytic, bem):
-        for f in sorted(Path(pkg.__file__).parent.glob("*.py")):
-            h.update(f.name.encode())
+        root = Path(pkg.__file__).parent
+        for f in sorted(root.rglob("*.py")):  # subpackages too: analytic.references
+            h.update(f.relative_to(root).as_posix().encode())
             h.update(f.read_bytes())
     return h.hexdigest()
 
@@ -405,7 +406,7 @@ def surface_reference_solution(point, nodes):
     on the grids ``nodes`` (panels along x); the point's ``layer`` (a plain description, see
     `layer`), if any, under it as the reference's own mapping (k d, foundation, ν: mode q's
     symbol times its own layer factor S(|q| k d, ν), ``analytic._layer``)."""
-    from analytic import surface_reference
+    from analytic.references import surface as surface_reference
     kw = {} if point.get("layer") is None else {"layer": _analytic_layer(point["layer"])}
     heights, aspect = surface_harmonics(point["surface"])
     return surface_reference.solve(**_surface_point_kwargs(point), heights=heights,
@@ -422,7 +423,7 @@ def bisinusoid_full_contact(speed, direction, ratio, hk, hk_y):
     Returns ``{"tau_f", "lateral", "load_threshold"}``: the friction stress along V and the
     lateral force per unit area (both independent of the load in full contact) and p̃_FC, the
     sum of the two families' thresholds."""
-    from analytic.fourier import full_contact
+    from analytic.references.fourier import full_contact
     th = math.radians(float(direction))
     c, s = math.cos(th), math.sin(th)
     tau, lat, fc = 0.0, 0.0, 0.0

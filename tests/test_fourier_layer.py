@@ -1,11 +1,11 @@
-"""The Fourier reference on a layer (`analytic.fourier_solve(layer=...)`, `analytic._layer`).
+"""The Fourier reference on a layer (`analytic.fourier_solve(layer=...)`, its layer factor).
 
-The layer factor S of `analytic._layer` is solved there from Navier's equations (a 4 x 4 system
-per mode); here it is held to the closed forms of docs/layers.md §1, typed in and evaluated in
-50-digit decimal arithmetic.  The solver is held to the half-space (bit for bit without a layer
-and for a layer thick enough that every S is 1), to the full-contact closed form, and to the
-BEM road (`bem.solve(layer=bem.Layer(...))`) at partial contact, each within the sum of the two
-codes' error estimates.
+The layer factor S of `analytic.references._layer` is solved there from Navier's equations (a 4 x 4
+system per mode); here it is held to the closed forms of docs/layers.md §1, typed in and evaluated
+in 50-digit decimal arithmetic.  The solver is held to the half-space (bit for bit without a layer
+and for a layer thick enough that every S is 1), to the full-contact closed form, and to the BEM
+road (`bem.solve(layer=bem.Layer(...))`) at partial contact, each within the sum of the two codes'
+error estimates.
 
 Measured here (FAST: levels 512, 1024, 2048, 8 shifts): S within 1.0e-15 (5 ulp) of the closed
 forms over t in [1e-3, 60] and the five ν; at the eight BEM points (the BEM adaptive at its
@@ -22,7 +22,8 @@ import scipy.linalg
 
 import analytic
 import bem
-from analytic import _layer, fourier
+from analytic.references import _layer, fourier
+from analytic.references.fourier import _grid, _measure
 from bem import _layer as bem_layer
 from conftest import ROUNDOFF
 
@@ -188,11 +189,11 @@ def test_full_contact_closed_form(lay):
     factor = analytic.layer_factor(np.arange(n // 2 + 1) * lay["thickness"], lay["nu"],
                                    lay["foundation"])
     load = 1.5 * fc["load_threshold"]
-    grid = fourier._solve_grid(n, 0.25, mat, speed, hk, "load", load, [(-0.5, 0.5)], factor)
+    grid = _grid._solve_grid(n, 0.25, mat, speed, hk, "load", load, [(-0.5, 0.5)], factor)
     assert grid.converged and grid.active.all()
     exact = load + fc["load_threshold"] * np.cos(2 * np.pi * grid.x + np.angle(e1))
     np.testing.assert_allclose(grid.sigma, exact, rtol=0, atol=1e-12 * load)
-    sc, _, _ = fourier._grid_scalars(grid, mat, speed, hk, (0.25, ()), factor)
+    sc, _, _ = _measure._grid_scalars(grid, mat, speed, hk, (0.25, ()), factor)
     assert sc["tau_f"] == pytest.approx(fc["tau_f"], rel=1e-11)
     assert sc["penetration"] == pytest.approx(1.0, abs=1e-12)
     # the solver in full contact: the closed form, its threshold under penetration control

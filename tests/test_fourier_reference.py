@@ -1,5 +1,5 @@
-"""The Fourier-collocation reference (`analytic.fourier`): identities, closed forms, limits,
-invariances and the cross-check against the semi-analytic solver.
+"""The Fourier-collocation reference (`analytic.references.fourier`): identities, closed forms,
+limits, invariances and the cross-check against the semi-analytic solver.
 
 The reference shares no code with either road's solver; these tests hold it to the standard
 linear solid, where the semi-analytic road is exact to ~1e-10, and to the identities any
@@ -16,7 +16,9 @@ import numpy as np
 import pytest
 
 import analytic
-from analytic import fourier, westergaard
+from analytic import westergaard
+from analytic.references import fourier
+from analytic.references.fourier import _grid
 from analytic.full_contact import friction_stress, modulus
 from conftest import ROUNDOFF
 
@@ -174,8 +176,8 @@ def test_toeplitz_solve_matches_dense_lu():
     idx = (200 + np.arange(150)) % n                          # a run through the period's end
     idx.sort()
     rhs = rng.standard_normal((idx.size, 2))
-    lev = fourier._restricted_solve(col, [(200, 150)], idx, rhs)
-    dense = fourier._restricted_solve(col, [(200, 100), (44, 50)], idx, rhs)  # forces LU
+    lev = _grid._restricted_solve(col, [(200, 150)], idx, rhs)
+    dense = _grid._restricted_solve(col, [(200, 100), (44, 50)], idx, rhs)  # forces LU
     np.testing.assert_allclose(lev, dense, rtol=0, atol=1e-11 * np.abs(dense).max())
 
 

@@ -1,6 +1,8 @@
 """The comparison layer's layout holds: the order of its jobs that `comparisons/__init__.py`
-states, no import cycle, one matplotlib importer, one caller of the roads.  Function-level
-imports count: a lazy import is still an arrow."""
+states, no import cycle, one matplotlib importer, one caller of the roads.  And `analytic`'s: the
+independent references (`analytic/references/`) import neither `bem` nor the paper's road, the
+road does not import them, and each reference stands alone.  Function-level imports count: a lazy
+import is still an arrow."""
 import ast
 import pathlib
 import re
@@ -144,3 +146,74 @@ def test_no_package_imports_another_packages_private_modules(package):
                 if top in ("bem", "analytic", "comparisons", "viscosine") and top != package:
                     assert not any(p.startswith("_") for p in rest.split(".") if p), \
                         f"{path.relative_to(ROOT)} imports {name}, private to {top}"
+
+
+# ---------------------------------------------------------- analytic: the road and the references
+ANALYTIC = ROOT / "analytic"
+REFERENCES = ANALYTIC / "references"
+#: the paper's road: every module of analytic/ beside its front (__init__) and the references
+ROAD = ("_accepted", "_closure", "_kernels", "_result", "dimensional", "full_contact", "hunter",
+        "solver", "westergaard")
+#: the independent references, each with the modules of analytic.references it may import
+#: (the layer factor is plain elasticity the two solvers share; the road has no layer)
+STANDALONE = {"fourier": {"_layer"}, "surface": {"_layer"}, "persson": set(), "_layer": set()}
+#: what the front of analytic takes from the references: two long-standing public names
+FRONT_NAMES = {"fourier_solve", "layer_factor"}
+
+
+def _module_name(path):
+    parts = list(path.relative_to(ROOT).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _analytic_imports(path):
+    return {t for t in _imports(_module_name(path), path) if t}
+
+
+def _in_references(target):
+    return target == "analytic.references" or target.startswith("analytic.references.")
+
+
+def test_every_module_of_analytic_is_the_road_or_a_reference():
+    here = {p.stem for p in ANALYTIC.glob("*.py")} - {"__init__"}
+    assert here == set(ROAD), "classify the new module: the paper's road or analytic/references"
+    refs = {p.stem for p in REFERENCES.glob("*.py")} \
+        | {p.name for p in REFERENCES.iterdir() if (p / "__init__.py").is_file()}
+    assert refs - {"__init__"} == set(STANDALONE)
+
+
+@pytest.mark.parametrize("path", sorted(REFERENCES.rglob("*.py")), ids=lambda p: _module_name(p))
+def test_the_references_import_neither_bem_nor_the_road(path):
+    for t in _analytic_imports(path):
+        top = t.split(".")[0]
+        assert top != "bem", f"{_module_name(path)} imports {t}: the references never use bem"
+        if top == "analytic":
+            assert _in_references(t), \
+                f"{_module_name(path)} imports {t}: the paper's road is what the references judge"
+
+
+@pytest.mark.parametrize("path", sorted(REFERENCES.rglob("*.py")), ids=lambda p: _module_name(p))
+def test_each_reference_stands_alone(path):
+    parts = _module_name(path).split(".")
+    if len(parts) < 3:
+        return  # the front of analytic.references: it re-exports its members' names
+    allowed = STANDALONE[parts[2]] | {parts[2]}
+    for t in _analytic_imports(path):
+        if t.startswith("analytic.references."):
+            assert t.split(".")[2] in allowed, f"{'.'.join(parts)} imports {t}"
+
+
+@pytest.mark.parametrize("stem", ROAD)
+def test_the_road_does_not_import_the_references(stem):
+    for t in _analytic_imports(ANALYTIC / f"{stem}.py"):
+        assert not _in_references(t), f"analytic.{stem} imports {t}"
+
+
+def test_the_front_of_analytic_takes_only_the_public_names_from_the_references():
+    taken = set()
+    for t in _analytic_imports(ANALYTIC / "__init__.py"):
+        if _in_references(t):
+            taken.add(t)
+    assert taken == {"analytic.references"} | {f"analytic.references.{n}" for n in FRONT_NAMES}

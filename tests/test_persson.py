@@ -1,5 +1,5 @@
-"""Persson's theory (analytic/persson.py): the spectrum's closed forms, the modulus and its
-angular averages, the quadrature against two independent ones, the elastic, small-load,
+"""Persson's theory (analytic/references/persson.py): the spectrum's closed forms, the modulus
+and its angular averages, the quadrature against two independent ones, the elastic, small-load,
 full-contact and narrow-band limits in closed form, the friction peak, invariance under the
 rescalings that keep the dimensionless groups, the result records and bad input.
 
@@ -18,7 +18,8 @@ from scipy.integrate import quad, solve_ivp
 from scipy.optimize import minimize_scalar
 from scipy.special import erf
 
-from analytic import full_contact, persson
+from analytic import full_contact
+from analytic.references import persson
 from conftest import LIMIT, QUADRATURE, ROUNDOFF
 
 BROAD = dict(hurst=0.8, rolloff=4.0, short_cutoff=1000.0, rms_slope=0.5)

@@ -1,4 +1,4 @@
-"""The surface reference (`analytic.surface_reference`): an independent solver for a rigid
+"""The surface reference (`analytic.references.surface`): an independent solver for a rigid
 periodic surface sliding over a viscoelastic half-space, checked against closed forms, the line
 contact's semi-analytic road, its own symmetries and limits, and its own convergence.
 
@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 import analytic
-from analytic import surface_reference as sr
+from analytic.references import surface as sr
+from analytic.references.surface import _measure
 from conftest import ROUNDOFF
 
 #: two solves of one discrete problem (or of two mirror images) agree to the iteration's stop
@@ -274,7 +275,7 @@ def test_the_contact_area_of_a_disc_from_its_gap():
         r = np.hypot(*np.meshgrid(x, x, indexing="ij"))
         radius = 0.3137
         gap = np.maximum(r - radius, 0.0) ** 1.5 * (1.0 + 0.7 * (r - radius))
-        area, band, fitted = sr._contact_area(r < radius, gap, 1.0)
+        area, band, fitted = _measure._contact_area(r < radius, gap, 1.0)
         assert fitted == band
         assert abs(area - math.pi * radius ** 2) <= 2.0 / n ** 2
 
@@ -379,7 +380,7 @@ def test_a_thick_layer_is_the_half_space(layer):
 def test_full_contact_on_a_layer_is_the_closed_form(layer, material, direction):
     """σ_q = z_q/(Ĉ(q) S(|q| k d)), the friction Σ (q·ê) Im(Ĉ S)|σ_q|², the mean compression
     C (k d) J0 p̃."""
-    from analytic._layer import layer_factor, uniform_compliance
+    from analytic.references._layer import layer_factor, uniform_compliance
     # heights well below d and a load whose compression stays short of the foundation
     harmonics, aspect, speed, load = {(1, 0): 0.01, (0, 1): 0.007j, (1, 1): 0.003}, 1.3, 1.5, 0.3
     res = sr.solve(load=load, speed=speed, heights=harmonics, aspect=aspect,

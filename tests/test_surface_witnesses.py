@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import bem
-from analytic import surface_reference
+from analytic.references import surface as surface_reference
 from comparisons.peers import surfaces as peers
 
 

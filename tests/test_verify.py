@@ -211,7 +211,7 @@ def _fourier_points():
     """(case, N) with N = 512 and 1024 where the Fourier collocation resolves the material's
     memory (it refuses the rest: sls-partial-v0.1 at 512, sls-ratio1000 below 4096), else the
     first N ≤ 4096 that does."""
-    from analytic.fourier import memory_resolution
+    from analytic.references.fourier import memory_resolution
     out = []
     for name in PARTIAL_SLS:
         p = suite.get_case(name)["point"]

@@ -7,7 +7,7 @@ import json
 import numpy as np
 import pytest
 
-from analytic import surface_reference as sr
+from analytic.references import surface as sr
 from comparisons import cli, suite, verify
 from comparisons.verify import _surface_fields
 
@@ -36,7 +36,7 @@ def _write_npz(path, fields, **extra):
 
 
 REFERENCE_SOLVER = """import numpy as np
-from analytic import surface_reference as sr
+from analytic.references import surface as sr
 
 class Out:
     def __init__(self, r, own):

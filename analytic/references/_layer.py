@@ -1,5 +1,5 @@
 """The surface compliance of a layer on a rigid foundation, one Fourier mode at a time, solved
-numerically from Navier's equations (the Fourier reference's own; nothing from `bem`).
+numerically from Navier's equations (the references' own; nothing from `bem`).
 
 A layer 0 ≤ z ≤ d (z into the body; plane strain; shear modulus μ, Poisson ratio ν) carries on
 its top face the pressure p̂ e^{ikx} and no shear; its bottom face is
@@ -225,7 +225,7 @@ def layer_factor(t, nu, foundation):
 # --------------------------------------------------------------------------------------------
 def uniform_compliance(nu, foundation, lateral="free"):
     """C of the uniform mode: v̂_0 = C (1 − ν²) d/E · p̂_0, i.e. k v̂_0 = C (k d) J σ̂_0 in the
-    units of `analytic.fourier` (J in (1 − ν²)/E_ref).
+    units of `analytic.references.fourier` (J in (1 − ν²)/E_ref).
 
     Under a uniform pressure the layer is in a homogeneous state (σ_zz = −p̂_0, σ_xz = 0,
     x-independent strains: a z-dependent ε_xx would need shear).  Plane-strain Hooke's law,

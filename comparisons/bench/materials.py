@@ -121,7 +121,7 @@ def _record(spec_kw):
 
 def one_point(point):
     """The point's BEM record, the standard linear solid's cost and the reference (a dict)."""
-    from analytic import fourier_solve
+    from analytic.references import fourier_solve
     with tempfile.TemporaryDirectory(prefix="viscosine-materials-") as folder:
         path = os.path.join(folder, "creep.txt")
         with open(path, "w", encoding="utf-8") as fh:
