@@ -59,8 +59,48 @@ def stderr(text) -> None:
     print(text, file=sys.stderr, flush=True)
 
 
+# One rule for every output a command writes (a file or a folder), checked before any work:
+# missing folders on its way are made (as `write_text` makes them); anything else that stops
+# the writing is bad input (exit status 2) in one line naming the option, the path and why.
+def _blocker(path):
+    """Why folders cannot be made up to ``path`` (None when they can): the nearest existing
+    ancestor must be a writable folder."""
+    anc = os.path.dirname(os.path.abspath(path))
+    while not os.path.lexists(anc):
+        anc = os.path.dirname(anc)
+    if not os.path.isdir(anc):
+        return f"{anc} is a file, not a folder"
+    if not os.access(anc, os.W_OK | os.X_OK):
+        return f"the folder {anc} is not writable"
+    return None
+
+
+def _missing(folder):
+    """The folders that do not exist on the way to ``folder``, deepest first."""
+    out = []
+    while not os.path.lexists(folder):
+        out.append(folder)
+        folder = os.path.dirname(folder)
+    return out
+
+
+def _make_folders(option, path, folder) -> None:
+    """Make ``folder`` (and its missing parents), refusing in one line when it cannot be."""
+    if os.path.isdir(folder):
+        return
+    why = _blocker(os.path.join(folder, "x"))
+    if why is None:
+        try:
+            os.makedirs(folder, exist_ok=True)
+            return
+        except OSError as exc:
+            why = f"cannot create {folder} ({exc.strerror})"
+    raise BadInput(f"{option} {path}: {why}")
+
+
 def check_output_file(option, path) -> None:
-    """An output file must be creatable: its folder exists, and it is not a folder/device/FIFO.
+    """An output file must be writable: its folder made when missing (with its parents), and
+    the file not a folder, device or FIFO.
 
     Raises
     ------
@@ -70,8 +110,7 @@ def check_output_file(option, path) -> None:
     if path == "":
         raise BadInput(f"{option} '' is not allowed: the name of a file")
     folder = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(folder):
-        raise BadInput(f"{option} {path}: the folder {folder} does not exist")
+    _make_folders(option, path, folder)
     if os.path.lexists(path):
         st = os.stat(path) if os.path.exists(path) else os.lstat(path)
         if not stat.S_ISREG(st.st_mode):
@@ -81,7 +120,9 @@ def check_output_file(option, path) -> None:
 
 
 def check_output_dir(option, path, create) -> None:
-    """An output folder: an existing folder, or (create) one whose parent exists.
+    """An output folder: an existing writable folder, or one that can be made (its missing
+    parents too); made now when ``create``, else made and removed again (the only sure test;
+    the command makes it when it writes).
 
     Raises
     ------
@@ -90,20 +131,17 @@ def check_output_dir(option, path, create) -> None:
     """
     if path == "":
         raise BadInput(f"{option} '' is not allowed: the name of a folder")
-    if os.path.exists(path):
-        if not os.path.isdir(path):
-            raise BadInput(f"{option} {path}: an existing file, not a folder")
-    else:
-        parent = os.path.dirname(os.path.abspath(path))
-        if not os.path.isdir(parent):
-            raise BadInput(f"{option} {path}: the folder {parent} does not exist")
-        if not os.access(parent, os.W_OK | os.X_OK):  # it could not be made there
-            raise BadInput(f"{option} {path}: the folder {parent} is not writable")
-        if create:
-            try:
-                os.mkdir(path)
-            except OSError as exc:
-                raise BadInput(f"{option} {path}: cannot create the folder ({exc.strerror})") from None
+    if os.path.lexists(path) and not os.path.isdir(path):
+        raise BadInput(f"{option} {path}: an existing file, not a folder")
+    if not os.path.isdir(path):
+        why = _blocker(path)
+        if why is not None:
+            raise BadInput(f"{option} {path}: {why}")
+        made = _missing(os.path.abspath(path))
+        _make_folders(option, path, os.path.abspath(path))  # the only sure test is to make it
+        if not create:  # made when written: leave nothing behind now
+            for folder in made:
+                os.rmdir(folder)
     if os.path.isdir(path) and not os.access(path, os.W_OK | os.X_OK):
         raise BadInput(f"{option} {path}: the folder is not writable")
 

@@ -106,6 +106,17 @@ def named(exc, door=CLI, point=None):
     return BadInput(f"{text} is not allowed: {_one_line(exc.allowed)}{tail}")
 
 
+def allowed_part(text):
+    """What is allowed, without why (the --help's table of ranges): a reason up to its first
+    ': ' outside brackets (an interval such as (1, 10] closes with either)."""
+    text, depth = _one_line(text), 0
+    for i, ch in enumerate(text):
+        depth += (ch in "([") - (ch in ")]")
+        if depth == 0 and text.startswith(": ", i):
+            return text[:i]
+    return text
+
+
 def refuse(name, why, value=None):
     """The BadInput ``<option>[ value] is not allowed here: why`` of an option that does not
     apply."""

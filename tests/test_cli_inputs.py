@@ -6,6 +6,7 @@ import os
 import pytest
 
 from comparisons import cli
+from comparisons import operating_point as op
 from comparisons.cli import _common
 
 POINT = ["point", "--solver", "bem", "--load", "0.3", "--speed", "1"]
@@ -27,12 +28,12 @@ ODD = [
     (APOINT + ["--fields", "{tmp}/f.csv", "--nodes", "4"], "--nodes 4"),
     # --fields: empty, missing folder, a folder, a device, a FIFO
     (POINT + ["--fields", ""], "--fields ''"),
-    (POINT + ["--fields", "{tmp}/missing/f.csv"], "does not exist"),
+    (POINT + ["--fields", "{file}/f.csv"], "file.txt is a file, not a folder"),
     (POINT + ["--fields", "{tmp}"], "a folder"),
     (POINT + ["--fields", "/dev/null"], "a device"),
     (POINT + ["--fields", "{fifo}"], "a FIFO"),
     (SWEEP + ["--fields", "{file}"], "an existing file"),
-    (SWEEP + ["--fields", "{tmp}/missing/dir"], "does not exist"),
+    (SWEEP + ["--fields", "{file}/dir"], "file.txt is a file, not a folder"),
     (SWEEP + ["--fields", ""], "--fields ''"),
     # input files: binary, not UTF-8, a FIFO (must not block), a folder, missing, empty name
     (POINT + ["--profile", "{binary}"], "--profile"),
@@ -222,7 +223,7 @@ def test_help_of_point_and_sweep_shows_the_accepted_range_of_each_input(capsys):
                             ("--prony", "material")):
             for road, table in (("analytic", analytic.ACCEPTED), ("bem", bem.ACCEPTED)):
                 if key in table:
-                    allowed = " ".join(_common._allowed(table[key][2]).split())
+                    allowed = " ".join(op.allowed_part(table[key][2]).split())
                     assert f"{road}: {allowed}" in text, (name, option, road)
         assert "analytic: a mean pressure p̃∞ = p∞(1 − ν²)/E0 in [1e-40, 1e+40]" in text
         assert "bem: E∞/E0 > 1 + 1e-12 and ≤ 10000" in text

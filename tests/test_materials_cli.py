@@ -418,7 +418,7 @@ BAD = [
     (MC + ["--material", "{file}", "--temperatures", "20", "--speeds", "1", "--out", "{tmp}"],
      _spectrum_curve("frequency,storage,loss"), "modulus_unit=None is not allowed"),
     (MC + ["--material", "{dma}", "--temperatures", "20", "--speeds", "1", "--out",
-           "{tmp}/missing/x"], "", "does not exist"),
+           "{file}/x"], "", "is a file, not a folder"),
 ]
 
 

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from . import protocol
-from .checks import real
+from .checks import bad, real
 from .fields import Fields
 
 
@@ -218,8 +218,8 @@ def groups(sc: SIScales, validate, accepted, with_hk=()) -> dict:
             si_name, formula = _SOURCE[name]
             if sc.ratio is None:  # a material in units of its relaxed modulus and tau_ref
                 formula = formula.replace("E0", "E_ref").replace("V τ", "V τ_ref")
-            raise ValueError(f"{si_name}={sc.given[name]!r} is not allowed: it gives {formula} = "
-                             f"{value!r}, outside the accepted {accepted[name][2]}") from None
+            raise bad(si_name, sc.given[name], f"it gives {formula} = {value!r}, outside the "
+                      f"accepted {accepted[name][2]}") from None
     return out
 
 

@@ -299,17 +299,6 @@ def parallel_options(p, what):
                         "tcp://host:8786; needs viscosine[cluster]); not with --workers")
 
 
-def _allowed(text):
-    """The range part of an ACCEPTED reason: up to its first ': ' outside brackets (an
-    interval such as (1, 10] closes with either)."""
-    depth = 0
-    for i, ch in enumerate(text):
-        depth += (ch in "([") - (ch in ")]")
-        if depth == 0 and text.startswith(": ", i):
-            return text[:i]
-    return text
-
-
 def accepted_ranges():
     """The accepted range of every input of point and sweep, from analytic.ACCEPTED and
     bem.ACCEPTED (for --help)."""
@@ -325,7 +314,7 @@ def accepted_ranges():
     for option, key in rows:
         for road, table in tables.items():
             if key in table:
-                lines += textwrap.wrap(f"{road}: {_allowed(table[key][2])}", 96,
+                lines += textwrap.wrap(f"{road}: {op.allowed_part(table[key][2])}", 96,
                                        initial_indent=f"  {option:<15}" if road == "analytic"
                                        or key not in tables["analytic"] else " " * 17,
                                        subsequent_indent=" " * 21)

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 
-from ._common import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK
+from ._common import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, check_output_dir
 
 
 def add_parser(sub):
@@ -48,6 +48,7 @@ def run(args) -> int:
             print(suite_export.summary_table(cases), end="")
             return EXIT_OK
         if args.export:
+            check_output_dir("--export", args.export, create=False)
             dirs = suite_export.export(args.export, args.cases, book)
             print(f"suite: wrote {len(dirs)} cases and README.md to {args.export}",
                   file=sys.stderr)
@@ -58,6 +59,8 @@ def run(args) -> int:
         if args.scheduler and args.workers != 1:
             raise suite.SuiteError("--scheduler and --workers are not allowed together: the "
                                    "cluster decides how many workers run")
+        if args.out:
+            check_output_dir("--out", args.out, create=False)
         res = suite.check(args.cases, out=args.out, resume=args.resume, workers=args.workers,
                           scheduler=args.scheduler, suite=book)
     except (suite.SuiteError, _cluster.MissingPackage) as exc:
