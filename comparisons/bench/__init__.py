@@ -9,7 +9,8 @@ two-worker local Dask cluster, and checks that all three return the same records
 order.  `--honesty` (`trust`), `--materials` (`materials`) and `--accepted` (`accepted`) are
 the studies of the BEM's error estimates, of broad Prony spectra and of the semi-analytic road
 over its accepted inputs; `--near-transition` (`near_transition`) the BEM just below the
-full-contact load through the command line; `--surfaces` (`surfaces`) the cost of the surface BEM beside
+full-contact load through the command line; `--materials-peers` (`materials_peers`) the DMA fit
+against pyvisco's and ANSYS's on pyvisco's example master curves; `--surfaces` (`surfaces`) the cost of the surface BEM beside
 Tamaas's elastic solver and its adaptive default.  Every table says how loaded the machine was (load average).
 """
 from __future__ import annotations
@@ -132,6 +133,9 @@ def run(args):
     applied here; returns the exit status."""
     if args.cluster:
         return cluster_sweep(2000 if args.points is None else args.points)
+    if args.materials_peers:
+        from . import materials_peers
+        return materials_peers.run()
     if args.materials:
         from . import materials
         return materials.materials(200 if args.points is None else args.points,

@@ -22,6 +22,9 @@ def add_parser(sub):
                         "through `point --solver bem --prony`, against the Fourier reference "
                         "(analytic.fourier_solve), with the standard linear solid's cost "
                         "(default 200 points)")
+    g.add_argument("--materials-peers", action="store_true",
+                   help="the DMA Prony fit (defaults) against pyvisco's and ANSYS's fits on "
+                        "pyvisco's example master curves: E', E'', tan δ residuals, per decade")
     g.add_argument("--surfaces", action="store_true",
                    help="the surface BEM: fixed grids 256² … 2^K a side (default K = 12) with "
                         "time, FFT pairs and memory per panel beside Tamaas's elastic solve, and "
@@ -76,5 +79,9 @@ def run(args):
     for study in ("honesty", "accepted"):
         if getattr(args, study) and args.max_log2n is not None:
             raise BadInput(f"--max-log2n is not allowed with --{study}: it sets the BEM tables")
+    for name in ("points", "max_log2n"):
+        if args.materials_peers and getattr(args, name) is not None:
+            raise BadInput(f"--{name.replace('_', '-')} {getattr(args, name)} is not allowed "
+                           "with --materials-peers: it fits the shipped curves, all of them")
     from .. import bench
     return bench.run(args)
