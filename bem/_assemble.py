@@ -91,6 +91,24 @@ def counted_contact(sigma, gap, active, scale):
     return out
 
 
+#: one patch whose gap spans fewer than 1/GAP_FIT_SCALE of the period (just below full
+#: contact) has its edges fitted on windows that scale with GAP_FIT_SCALE times the gap's
+#: panels instead of the period's (`fit_panels`): windows of sqrt(N)/16 .. sqrt(N)/2 panels
+#: reach across a gap of 177 panels at 2^20 (E_inf/E0 = 100, V/V0 = 24.7, 7e-8 below p_FC),
+#: where the edge asymptotics do not hold (ke 2.4e-6 off there, 2e-7 at 2^19)
+GAP_FIT_SCALE = 10
+
+
+def fit_panels(counted):
+    """The panels whose square root sizes the edge fits' windows (`edge_offset`): the
+    period's, or for one patch with a narrow gap GAP_FIT_SCALE times the gap's panels."""
+    n = counted.size
+    runs = _runs(counted)
+    if len(runs) != 1 or runs[0][1] == n:
+        return n
+    return min(n, GAP_FIT_SCALE * (n - runs[0][1]))
+
+
 def _root_near_zero(pos, vals, deg):
     """Real root nearest 0 of the least-squares polynomial of degree deg through (pos, vals)."""
     scale = float(np.max(np.abs(pos)))
@@ -305,10 +323,12 @@ def edge_offset_plain(inside_sq, outside_23, h, nodes, lags=(0.0, 0.0)):
     return 0.5 * h
 
 
-def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h, lag=0.0):
+def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h, lag=0.0,
+                 panels=None):
     """(trailing, leading) edges of one patch, unwrapped so that leading > trailing.  ``lag``:
     `edge_lags` (the pressure side of the leading edge and the gap side of the trailing edge
-    lie that far outside the true edges)."""
+    lie that far outside the true edges); ``panels``: `fit_panels` (default the panels
+    given)."""
     n = sigma.size
     last = first + length - 1
     half = (length - 1) // 2 + 1
@@ -318,8 +338,9 @@ def _patch_edges(sigma, gap, first, length, free_after, free_before, x, h, lag=0
     out_trail = np.abs(gap[(first - 1 - np.arange(max(free_before // 2, 0))) % n]) ** (2.0 / 3.0)
     x_first = x[first]
     x_last = x_first + (length - 1) * h
-    lead = x_last + edge_offset(ins_lead, out_lead, h, n, (lag, 0.0))
-    trail = x_first - edge_offset(ins_trail, out_trail, h, n, (0.0, lag))
+    fit = n if panels is None else panels
+    lead = x_last + edge_offset(ins_lead, out_lead, h, fit, (lag, 0.0))
+    trail = x_first - edge_offset(ins_trail, out_trail, h, fit, (0.0, lag))
     return trail, lead
 
 
@@ -364,7 +385,8 @@ def _summit(profile, y, ids, xs, trail, lead):
     return t if height(t) >= height(start) else start
 
 
-def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False, lag=0.0):
+def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False, lag=0.0,
+             panels=None):
     """Contact patches of a partial contact (`Patch` with sub-panel edges).
 
     With ``profile`` (and its panel heights ``y``) each patch gets its summit and ka, ke, kê
@@ -372,7 +394,8 @@ def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False, lag=0
     is the crest X = 0.  ``window``: the panels are a contact window, not a period (the free
     panels of each side end at the window's ends; a patch that reaches one is the caller's
     error).  The edge fit's panel distances scale with the square root of the panels given
-    (`edge_offset`): a window's, whose patch spans a sixth to a third of them, as a period's.
+    (`edge_offset`): a window's, whose patch spans a sixth to a third of them, as a period's;
+    ``panels`` (`fit_panels`) stands for them where given.
     """
     out = []
     n = sigma.size
@@ -390,7 +413,7 @@ def _patches(sigma, gap, active, x, h, profile=None, y=None, window=False, lag=0
             if i == 0:
                 free_before = first
         trail, lead = _patch_edges(sigma, gap, first, length, free_after, free_before, x, h,
-                                   lag)
+                                   lag, panels)
         shift = -math.floor(0.5 * (trail + lead) + 0.5)  # centre into [-1/2, 1/2)
         trail += shift
         lead += shift
@@ -774,8 +797,9 @@ def _contact(res, grid, profile, material, speed, mean_p):
         return True, patches, 1.0, math.pi, None, patches[0].ke_hat, warnings
     # round-off slivers are not patches (`counted_contact`), as for the estimate
     counted = counted_contact(sigma, res["gap"], active, grid.scale)
+    fit = grid.n if grid.window else fit_panels(counted)
     patches = tuple(_patches(sigma, res["gap"], counted, grid.x, grid.h, profile, grid.y,
-                             grid.window, edge_lags(material, speed, grid.h, grid.n)))
+                             grid.window, edge_lags(material, speed, grid.h, fit), fit))
     frac = float(sum(p.width for p in patches))
     if len(patches) == 1:
         ka, ke, ke_hat = patches[0].ka, patches[0].ke, patches[0].ke_hat

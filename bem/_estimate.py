@@ -9,7 +9,7 @@ import numpy as np
 
 from . import _assemble
 from ._assemble import (ROUNDOFF, _full_patch, _patches, _window_friction, counted_contact,
-                        edge_lag_reach, edge_lags)
+                        edge_lag_reach, edge_lags, fit_panels)
 from ._influence import collocation_shifts
 from ._layer import MIN_LAYER_PANELS
 
@@ -70,9 +70,12 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     # round-off slivers (a negligible share of the load across gaps at the validity gate's
     # round-off) are not counted as patches: `counted_contact`
     counted = counted_contact(sigma, res["gap"], active, grid.scale)
+    # the edge fits' windows: the period's panels, or a narrow gap's (`fit_panels`)
+    fit = grid.n if grid.window else fit_panels(counted)
     patches = _patches(sigma, res["gap"], counted, grid.x, grid.h, profile, grid.y, grid.window,
-                       edge_lags(material, speed, grid.h, grid.n))
+                       edge_lags(material, speed, grid.h, fit), fit)
     res["patches"] = patches  # the next grid's start needs their edges too
+    out["panels"] = fit  # what the edge fits see (`_unresolved_memory`)
     if not grid.window and _lag_law_applies(material, speed, grid):
         # every memory far under the fitted distances: the dissipation form converges like
         # 1/N there, the first-order memory law like 1/N^2 plus its remainder (in the estimate)
@@ -82,16 +85,27 @@ def _level_scalars(res, grid, profile, material, speed, amp):
         out.update(tau_f_law=tau_law, mu_law=tau_law / mean_p if mean_p > 0 else math.nan,
                    lag_law=LAG_LAW_SAFETY * l_eff / half)
     frac = float(sum(p.width for p in patches))
-    # the deepest gap, in units of the validity gate's round-off (`MIN_GAP_DEPTH`)
-    out["gap_depth"] = float(np.max(res["gap"])) / (ROUNDOFF * grid.scale)
+    # the deepest gap, in units of the validity gate's round-off (`MIN_GAP_DEPTH`), where the
+    # gaps are differences C sigma - y + s; the gap step's are solved for (exact to their own
+    # precision, `_grid._gap_solve`)
+    out["gap_depth"] = None if res.get("exact_gaps") else \
+        float(np.max(res["gap"])) / (ROUNDOFF * grid.scale)
     out.update(contact_fraction=frac, npatch=len(patches),
-               min_panels=min(p.panels for p in patches))
+               min_panels=min(p.panels for p in patches),
+               min_gap_panels=_narrowest_gap(counted) if len(patches) == 1 else None)
     if len(patches) == 1:
         p = patches[0]
         out.update(ka=p.ka, ke=p.ke, ke_hat=p.ke_hat)
     else:
         out.update(ka=None, ke=None, ke_hat=None)
     return out
+
+
+def _narrowest_gap(counted):
+    """Panels of the narrowest run of free panels between the counted patches (one patch: the
+    period less it; checked like a patch's width, `MIN_PATCH_PANELS`)."""
+    free = _assemble._runs(~counted)
+    return min(length for _, length in free) if free else counted.size
 
 
 def _lag_law_applies(material, speed, grid):
@@ -200,6 +214,10 @@ def _estimate(scalars, material, speed, layer=None):
     n0, a = run[min(2, len(run) - 1)]  # N/4: the coarsest grid every estimate uses
     if a["min_panels"] < MIN_PATCH_PANELS:
         reason = f"a contact patch spans {a['min_panels']} panels at N={n0} " \
+                 f"(at least {MIN_PATCH_PANELS} are needed)"
+    elif (a.get("min_gap_panels") or n0) < MIN_PATCH_PANELS:
+        # just below full contact the gap is the narrow part: its edges are fitted on it too
+        reason = f"a gap spans {a['min_gap_panels']} panels at N={n0} " \
                  f"(at least {MIN_PATCH_PANELS} are needed)"
     # full contact has no edges, hence no inner layers: a single harmonic per mode, which the
     # exact panel coefficients give to O(1/N^2) whatever the memory lengths (Appendix B)

@@ -25,6 +25,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.fft as sfft
 
 from . import _kernels
 from ._assemble import _patches, _runs
@@ -80,6 +81,24 @@ KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
 #: the Krylov solves keep their preconditioned vectors (one transform pair fewer per cycle)
 #: while these take at most this memory: restart 8 on a set of up to 2^21 panels
 KRYLOV_KEEP_BYTES = 8 * 8 * 2 ** 21
+#: the gap step (`_gap_solve`) where the load lies at most this fraction of itself below the
+#: grid's full-contact load: the contact is the period less a narrow gap, and the gaps, solved
+#: for directly, keep their own relative precision (as differences C sigma - y + s they carry
+#: the residual's rounding, 1e-12 h at 2^24 panels, against gaps of 1e-12 h 1e-8 below p_FC)
+GAP_STEP_DEFICIT = 1e-2
+#: the gap step's Krylov tolerance: the 2-norm of the pressure left on the free panels over
+#: that of the full-contact pressure there (the deficit's scale; its gaps and edges move by
+#: about as much, relative); a cold start's inexact steps stop at COLD_KRYLOV_TOL of it ...
+GAP_STEP_TOL = 1e-10
+#: ... and not below this many machine epsilons times the free panels times J0/J(0+): the
+#: restricted C^+ is conditioned like its panels times the compliances' spread (E_inf/E0 =
+#: 1000, V/V0 = 0.01, 1e-3 below p_FC, 22531 free panels at 2^20: stagnated at 3e-9)
+GAP_STEP_FLOOR = 8.0
+#: the gap step's Krylov restart (its basis is of the free panels' size only) ...
+GAP_STEP_RESTART = 40
+#: the gap step's Toeplitz block is applied on the free panels' span (2L-point transforms)
+#: where that span L is at most this fraction of the period, else through the period's
+GAP_LOCAL_SPAN = 0.25
 #: pressure (over its maximum) and gap (over h) treated as zero by the active-set rule
 ACTIVE_SET_ROUNDOFF = 2e-13
 #: ... and once the sets have cycled: just inside the validity gate's 1e-12
@@ -98,6 +117,7 @@ class _Grid:
             correction = symbol_correction(layer, material.j_plus, material.terms, speed, nodes,
                                            shifts)
         self.op = CirculantOperator(column, correction)
+        self.material = material
         self.layer = layer      # a bem.Layer, or None (the half-space)
         y = profile.sample(nodes)
         self.y = y - y.mean()  # rounding only: samples have zero mean
@@ -214,6 +234,105 @@ def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
     return sigma, s, its, res / load * grid.amp, ok, None
 
 
+def _gap_solve(grid: _Grid, free, pfull, x0, rtol, restart, max_inner):
+    """Load control near full contact: the gaps g of the free panels, solved for directly.
+
+    With the gap g on the free set F and zero on the contact, C sigma = y - s + g gives
+    sigma = p_full + C^+ g (p_full = C^+ y + load, the full-contact pressure; C^+ maps onto
+    zero-mean pressures) and s = mean(g); the free panels carry no pressure:
+    (C^+ g)_F = -p_full_F, a system of the size of the free set, preconditioned by R_F C R_F^T
+    (as `_dual_solve`, whose unknown is y + g).  The right-hand side is the full-contact
+    pressure on the gap, of the order of the load's deficit below p_FC, and the unknowns are
+    the gaps themselves: both keep their relative precision however small the gap (1e-13 h
+    1e-8 below p_FC), where the primal step's gaps are differences of O(h) numbers.  The
+    Krylov solve stops at ``rtol`` of ||p_full_F||; the pressure left on F is then set to
+    zero.  The Toeplitz block is applied on the free panels' span when that is short
+    (`_FreeSpan`), so a step costs O(L log L) plus one transform pair of the period.
+    Returns (sigma_full, s, iterations, residual (scaled like the primal's), ok, gaps).
+    """
+    n = grid.n
+    span = _FreeSpan(grid, free)
+    b = -pfull[free]
+    bnorm = float(np.linalg.norm(b))
+    x = np.zeros(free.size) if x0 is None else np.asarray(x0, dtype=float)
+    z, its, res, ok = gmres(span.inverse, span.forward, b, x, rtol * bnorm, restart,
+                            max_inner, keep=_keeps(restart, free.size))
+    gap = np.zeros(n)
+    gap[free] = z
+    sigma = grid.op.pseudo_solve(gap)
+    sigma += pfull
+    sigma[free] = 0.0
+    s = float(gap.sum()) / n  # mean(C sigma) = 0 = mean(y): the mean gap
+    scale = max(float(np.max(pfull)), 1e-300)
+    return sigma, s, its, res / scale * grid.amp, ok, gap
+
+
+def _gap_step_tol(grid: _Grid, free_panels):
+    """The gap step's Krylov tolerance (relative to the full-contact pressure on the free
+    panels): GAP_STEP_TOL, or the rounding floor GAP_STEP_FLOOR eps m J0/J(0+) of m free
+    panels where that is larger."""
+    spread = grid.material.J0 / grid.material.j_plus
+    return max(GAP_STEP_TOL, GAP_STEP_FLOOR * np.finfo(float).eps * free_panels * spread)
+
+
+class _FreeSpan:
+    """R_F C^+ R_F^T and R_F C R_F^T for the gap step (`_gap_solve`): on the shortest arc of
+    panels holding the free set F, through the Toeplitz block of that arc (exact, by its
+    circulant embedding on a fast transform length) where the arc is at most GAP_LOCAL_SPAN of
+    the period, else through the period."""
+
+    def __init__(self, grid: _Grid, free):
+        n = grid.n
+        self.op, self.free = grid.op, free
+        self.local = False
+        if free.size == 0:
+            return
+        steps = np.diff(np.append(free, free[0] + n))  # to the next free panel
+        far = int(np.argmax(steps))
+        start = int(free[(far + 1) % free.size])
+        length = n - int(steps[far]) + 1  # the arc from start over every free panel
+        if length > GAP_LOCAL_SPAN * n:
+            return
+        self.local = True
+        self.idx = (free - start) % n
+        size = sfft.next_fast_len(2 * length, real=True)
+        self.size = size
+        offsets = np.arange(size)
+        offsets[size - length + 1:] -= size  # the embedding's column: offsets 0 .. L-1, -(L-1) .. -1
+        offsets[length:size - length + 1] = 0  # not reached from inside the arc
+        keep = np.ones(size, dtype=bool)
+        keep[length:size - length + 1] = False
+        self.symbols = []
+        for inverse in (True, False):
+            f = grid.op.symbol.copy()
+            if inverse:
+                f[0] = 0.0
+                f[1:] = 1.0 / f[1:]
+            col = sfft.irfft(f, n)
+            del f
+            emb = np.where(keep, col[offsets % n], 0.0)
+            del col
+            self.symbols.append(sfft.rfft(emb))
+        self.plus, self.plain = self.symbols
+
+    def _local(self, symbol, values):
+        z = np.zeros(self.size)
+        z[self.idx] = values
+        return sfft.irfft(sfft.rfft(z) * symbol, self.size)[self.idx]
+
+    def inverse(self, z):
+        """(C^+ z~)_F for z~ equal to z on F and zero elsewhere."""
+        if self.local:
+            return self._local(self.plus, z)
+        return self.op.apply_on(self.free, z, inverse=True)
+
+    def forward(self, r):
+        """(C r~)_F: the preconditioner."""
+        if self.local:
+            return self._local(self.plain, r)
+        return self.op.apply_on(self.free, r)
+
+
 def _keeps(restart, size) -> bool:
     """Whether a Krylov solve keeps its preconditioned vectors (`gmres`'s ``keep``)."""
     return 8 * restart * size <= KRYLOV_KEEP_BYTES
@@ -232,7 +351,15 @@ def _full_contact_deficit(grid: _Grid, load):
     free-panel step's rounding floor must be small against them too (1e-6 below p_FC, it left
     ka 6e-7 off and jumping from grid to grid at 2^19 ... 2^21, where the primal step's
     converged like N^-2)."""
-    return max(-float(grid.op.pseudo_solve(grid.y).min()) - load, 0.0)
+    return _full_contact_pressure(grid, load)[1]
+
+
+def _full_contact_pressure(grid: _Grid, load):
+    """(p_full, deficit): the full-contact pressure C^+ y + load on every panel and
+    `_full_contact_deficit`'s p_FC - load (at least 0)."""
+    pfull = grid.op.pseudo_solve(grid.y)
+    pfull += load
+    return pfull, max(-float(pfull.min()), 0.0)
 
 
 def _near_full_tol(grid: _Grid, load, deficit, tol):
@@ -255,6 +382,7 @@ class _Mode:
 
     loose: bool  # a cold start's inexact steps (COLD_KRYLOV_TOL), until the set settles
     dual: bool   # the free-panel step (`_dual_solve`) where most panels are in contact
+    pfull: np.ndarray | None = None  # the full-contact pressure: the gap step (`_gap_solve`)
     roundoff: float = ACTIVE_SET_ROUNDOFF  # the active-set rule's allowance
     seen: dict = field(default_factory=dict)  # key of each active set -> its outer step
     retreat: bool = True  # the cold start's sped-up retreat of runs (`_speed_up_retreat`)
@@ -280,13 +408,20 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     # the free-panel step on a large grid, unless its rounding floor is a visible part of the
     # load (stiff materials, whose 1/symbol grows like E_inf/E0 times the mode number) or of
     # the pressures next to a gap near full contact
-    deficit = None if load is None or grid.window else _full_contact_deficit(grid, load)
+    pfull, deficit = (None, None) if load is None or grid.window else \
+        _full_contact_pressure(grid, load)
     tol = _near_full_tol(grid, load, deficit, tol)
+    # just below full contact the gaps are solved for directly (`_gap_solve`; the line's
+    # periodic grids: a surface's free set is no arc)
+    near = isinstance(grid, _Grid) and deficit is not None and \
+        deficit <= GAP_STEP_DEFICIT * load
     mode = _Mode(loose=cold and COLD_KRYLOV_TOL > tol,
                  dual=(load is not None and n >= DUAL_MIN_NODES and not grid.window
+                       and not near
                        and _dual_floor(grid) <= DUAL_MAX_FLOOR * load
                        and _dual_floor(grid) <= DUAL_MAX_DEFICIT_FLOOR * deficit),
-                 retreat=retreat)
+                 pfull=pfull if near else None, retreat=retreat)
+    del pfull
     for it in range(1, max_outer + 1):
         if not active.any():
             active = grid.y >= grid.y.max()  # at least the highest point touches
@@ -297,7 +432,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
             break
         held, gap = [gap], None  # memory: _step lets go of the old gaps before its solve
         sigma, s, its, relres, ok, gap = _step(
-            grid, active, sigma, s, held, load, sep, mode.dual,
+            grid, active, sigma, s, held, load, sep, mode,
             COLD_KRYLOV_TOL if mode.loose else tol, restart, max_inner, widen)
         inner.append(its)
         if not ok:
@@ -317,13 +452,15 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     if gap is None:  # stopped before a solve (a window that its contact fills)
         gap = np.zeros(n)
     return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
-            "inner": inner, "relres": relres, "status": status, "message": message}
+            "inner": inner, "relres": relres, "status": status, "message": message,
+            "exact_gaps": mode.pfull is not None}
 
 
-def _step(grid: _Grid, active, sigma, s, held, load, sep, dual, tol, restart, max_inner,
+def _step(grid: _Grid, active, sigma, s, held, load, sep, mode, tol, restart, max_inner,
           widen):
-    """One outer step's linear solve on the active set: full contact directly, the free-panel
-    step (``dual``, most panels in contact), else the primal one on the contact panels.
+    """One outer step's linear solve on the active set: full contact directly, the gap step
+    (``mode.pfull``: just below full contact), the free-panel step (``mode.dual``, most panels
+    in contact), else the primal one on the contact panels.
     ``held``: a list holding the gaps of ``sigma`` (or None), emptied here (memory).
     Returns (sigma, s, Krylov iterations, relres, ok, gaps of the new sigma)."""
     gap = held.pop()
@@ -334,7 +471,18 @@ def _step(grid: _Grid, active, sigma, s, held, load, sep, dual, tol, restart, ma
         s = float(grid.y.mean()) if load is not None else 0.0
         sigma = grid.op.pseudo_solve(grid.y) + (load if load is not None else 0.0)
         its, relres, ok = 0, 0.0, True
-    elif dual and 2 * int(np.count_nonzero(active)) > n:
+    elif mode.pfull is not None and 2 * int(np.count_nonzero(active)) > n:
+        # just below full contact: the gaps of the free panels are the unknowns; they come
+        # back exact (zero on the contact), not as C sigma - y + s
+        free = np.flatnonzero(~active).astype(np.int32)
+        # the previous step's gaps start it (the grid's first step: from zero)
+        x0 = None if gap is None or not mode.seen else gap[free].copy()
+        gap = None
+        rtol = COLD_KRYLOV_TOL if mode.loose else _gap_step_tol(grid, free.size)
+        return _with_retry(
+            lambda r: _gap_solve(grid, free, mode.pfull, x0, rtol, r, max_inner),
+            max(restart, min(GAP_STEP_RESTART, free.size)), free.size, widen)
+    elif mode.dual and 2 * int(np.count_nonzero(active)) > n:
         # most panels in contact on a large grid: solve for the displacements of the few
         # free panels instead (memory and work scale with the free set, not the contact)
         free = np.flatnonzero(~active).astype(np.int32)  # N < 2^31; memory
@@ -369,7 +517,7 @@ def _judge(mode: _Mode, active, sigma, gap, new, grid: _Grid, it):
     verdict): verdict (status, message) when the iteration stops (converged, or cycled), else
     None, with key that of the next set, or None when a cold start's inexact steps have just
     settled (the same set is then solved again, to tol)."""
-    key = _next_active_set(active, sigma, gap, new, mode.roundoff, grid.scale)
+    key = _next_active_set(active, sigma, gap, new, mode.roundoff, _gap_scale(mode, gap, grid))
     if mode.loose and (key is None or key in mode.seen):
         # the inexact steps have settled (or cycle): from here every step is solved to tol
         mode.loose = False
@@ -390,7 +538,8 @@ def _judge(mode: _Mode, active, sigma, gap, new, grid: _Grid, it):
         # them with that allowance from here on (a second cycle is final)
         mode.roundoff = CYCLE_ROUNDOFF
         mode.seen.clear()
-        key = _next_active_set(active, sigma, gap, new, mode.roundoff, grid.scale)
+        key = _next_active_set(active, sigma, gap, new, mode.roundoff,
+                               _gap_scale(mode, gap, grid))
     if key is None:
         if grid.window and (active[0] or active[-1]):
             return None, (WINDOW_FAILED, "the contact reaches an end of its window")
@@ -400,6 +549,16 @@ def _judge(mode: _Mode, active, sigma, gap, new, grid: _Grid, it):
         return key, (CYCLED, f"active set cycles (outer step {it} repeats step "
                              f"{mode.seen[key]})")
     return key, None
+
+
+def _gap_scale(mode: _Mode, gap, grid: _Grid):
+    """The scale of the gaps' round-off for the active-set rule: h (the heights' scale), or
+    after a gap step, whose gaps are exact to their own precision, the deepest gap (1e-8
+    below p_FC it is 1e-13 h: an allowance of 2e-13 h would keep interpenetrating panels
+    free)."""
+    if mode.pfull is None:
+        return grid.scale
+    return min(grid.scale, max(float(np.max(gap)), 0.0))
 
 
 def _speed_up_retreat(active, new):

@@ -161,13 +161,16 @@ def test_free_panel_step_that_cycles_hands_over_to_the_primal(monkeypatch):
     at 2^20 (the rounding C^+ amplifies): its active sets cycled (refused after 39 s); after
     DUAL_MAX_STEPS of them the primal step decides, and the answer lies within its estimate of
     the semi-analytic road.  (By default the free-panel step is no longer taken there: its
-    floor is 1e-4 of the load's deficit below p_FC, `DUAL_MAX_DEFICIT_FLOOR`; it is forced
-    here to test the hand-over.)"""
+    floor is 1e-4 of the load's deficit below p_FC, `DUAL_MAX_DEFICIT_FLOOR`, and within
+    GAP_STEP_DEFICIT of p_FC the gap step solves; both are turned off here to test the
+    hand-over.)"""
     from bem import _grid as S
     kw = dict(load=0.5, speed=0.01)
     grid = S._Grid(bem.Sinusoid(1.0), bem.Prony.standard_linear_solid(3.0), 0.01, 2 ** 20)
     assert S._dual_floor(grid) > S.DUAL_MAX_DEFICIT_FLOOR * S._full_contact_deficit(grid, 0.5)
+    assert S._full_contact_deficit(grid, 0.5) <= S.GAP_STEP_DEFICIT * 0.5
     monkeypatch.setattr(S, "DUAL_MAX_DEFICIT_FLOOR", math.inf)
+    monkeypatch.setattr(S, "GAP_STEP_DEFICIT", 0.0)
     calls = _spy_dual(monkeypatch)
     r = bem.solve(**kw, nodes=2 ** 20)
     assert r.success, r.message
@@ -287,17 +290,25 @@ def test_the_adaptive_mesh_takes_the_memory_law_where_its_estimate_is_smaller():
     assert abs(r.mu / ref.mu - 1) <= r.error_estimate["mu"] <= 1e-6
 
 
-def _near_full_contact_state(nodes=4096):
+def _near_full_contact_state(nodes=4096, gap_step=True):
     """A converged grid 1e-4 below the full-contact load (E_inf/E0 = 3, V/V0 = 1): one patch,
-    the period less a gap of about 26 panels at N = 4096."""
+    the period less a gap of about 26 panels at N = 4096 (``gap_step=False``: solved by the
+    primal step, whose gaps are differences C sigma - y + s)."""
+    from bem import _grid as S
     from bem._grid import _Grid, _solve_one
     from bem._inputs import Prony, Sinusoid
     from comparisons.roads import full_contact_load
     profile, material = Sinusoid(1.0), Prony.standard_linear_solid(3.0)
     load = full_contact_load(1.0, 3.0, 1.0) * (1.0 - 1e-4)
     grid = _Grid(profile, material, 1.0, nodes)
-    res = _solve_one(grid, load, None, [None], 1e-10, 50, 8, 300,
-                     elastic=(profile, Prony(material.J0)))
+    saved = S.GAP_STEP_DEFICIT
+    S.GAP_STEP_DEFICIT = saved if gap_step else 0.0
+    try:
+        res = _solve_one(grid, load, None, [None], 1e-10, 50, 8, 300,
+                         elastic=(profile, Prony(material.J0)))
+    finally:
+        S.GAP_STEP_DEFICIT = saved
+    assert res["exact_gaps"] == gap_step
     assert res["status"] == 0 and not res["active"].all()
     return res, grid, profile, material, load
 
@@ -349,9 +360,9 @@ def test_the_estimate_is_given_across_a_sliver_on_one_grid():
     on every grid, so the estimate is trusted (it was withheld: '1, 1, 3')."""
     from bem._estimate import _estimate, _level_scalars
     scalars = []
-    for n in (1024, 2048, 4096):
+    for n in (2048, 4096, 8192):  # the gap spans 13 panels and more (at least 8 are needed)
         res, grid, profile, material, load = _near_full_contact_state(n)
-        if n == 4096:
+        if n == 8192:
             res = _with_sliver(res, load, 1e-12, 3e-13)
         scalars.append((n, _level_scalars(res, grid, profile, material, 1.0, 1.0)))
     est, reason, _ = _estimate(scalars, material, 1.0)
@@ -376,11 +387,15 @@ def test_just_below_full_contact_is_answered_within_its_estimate():
 def test_a_gap_at_round_off_gives_no_estimate():
     """3e-8 below p_FC the deepest gap is a few times the validity gate's 1e-12 h and the grids
     agree on edges that are round-off (ka 1.1e-6 and 3.5e-5 off under estimates of 9e-7 and
-    1.4e-7): below MIN_GAP_DEPTH times that round-off the estimate is not trusted."""
+    1.4e-7): below MIN_GAP_DEPTH times that round-off the estimate is not trusted, where the
+    gaps are differences (the primal step); the gap step's are solved for: no such rule."""
     from bem._estimate import MIN_GAP_DEPTH, _estimate, _level_scalars
+    exact = _near_full_contact_state(4096)[0]
+    assert _level_scalars(exact, *_near_full_contact_state(4096)[1:4], 1.0, 1.0)[
+        "gap_depth"] is None
     scalars = []
     for n in (1024, 2048, 4096):
-        res, grid, profile, material, load = _near_full_contact_state(n)
+        res, grid, profile, material, load = _near_full_contact_state(n, gap_step=False)
         scalars.append((n, _level_scalars(res, grid, profile, material, 1.0, 1.0)))
     assert scalars[-1][1]["gap_depth"] > 1e3 * MIN_GAP_DEPTH  # 1e-4 below: gaps of 1e-7 h
     assert _estimate(scalars, material, 1.0)[1] is None

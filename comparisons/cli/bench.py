@@ -33,9 +33,14 @@ def add_parser(sub):
                    help="the semi-analytic road over a random sample of analytic.ACCEPTED: "
                         "valid answers, the worst consistency residuals, every failure "
                         "(default 1000 points)")
+    g.add_argument("--near-transition", action="store_true",
+                   help="the BEM just below the full-contact load (1e-8 … 1e-3 below p̃_FC, "
+                        "E∞/E0 up to 1e3) through `point --solver bem`, against the "
+                        "semi-analytic road: refused, wrong, CPU, memory (default 100 points; "
+                        "JSON lines in bench-near-transition-S<seed>.jsonl, resumed)")
     p.add_argument("--seed", type=integer, action=Once, metavar="S",
-                   help="seed of the --honesty, --materials or --accepted sample (default "
-                        "20261123, 20261125, 2024)")
+                   help="seed of the --honesty, --materials, --accepted or --near-transition "
+                        "sample (default 20261123, 20261125, 2024, 20261128)")
     p.add_argument("--light", action="store_true",
                    help="with --honesty: light loads, p~/hk log-uniform in 1e-8 … 1e-4")
     p.add_argument("--front-door", action="store_true",
@@ -61,9 +66,10 @@ def run(args):
         raise BadInput(f"--max-log2n {args.max_log2n} is not allowed: an integer in [3, 24]")
     if args.cluster and args.max_log2n is not None:
         raise BadInput("--max-log2n is not allowed with --cluster: it sets the BEM tables")
-    if args.seed is not None and not (args.honesty or args.materials or args.accepted):
-        raise BadInput("--seed is not allowed without --honesty, --materials or --accepted: it "
-                       "seeds their sample")
+    if args.seed is not None and not (args.honesty or args.materials or args.accepted
+                                      or args.near_transition):
+        raise BadInput("--seed is not allowed without --honesty, --materials, --accepted or "
+                       "--near-transition: it seeds their sample")
     if args.light and not args.honesty:
         raise BadInput("--light is not allowed without --honesty: it chooses that sample")
     if args.front_door and not args.honesty:
@@ -76,9 +82,10 @@ def run(args):
         raise BadInput(f"--workers {args.workers} is not allowed: an integer ≥ 1")
     if args.cheap and not args.accepted:
         raise BadInput("--cheap is not allowed without --accepted: it is a mode of that study")
-    for study in ("honesty", "accepted"):
+    for study in ("honesty", "accepted", "near_transition"):
         if getattr(args, study) and args.max_log2n is not None:
-            raise BadInput(f"--max-log2n is not allowed with --{study}: it sets the BEM tables")
+            raise BadInput(f"--max-log2n is not allowed with --{study.replace('_', '-')}: it "
+                           "sets the BEM tables")
     for name in ("points", "max_log2n"):
         if args.materials_peers and getattr(args, name) is not None:
             raise BadInput(f"--{name.replace('_', '-')} {getattr(args, name)} is not allowed "

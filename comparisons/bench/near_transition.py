@@ -1,0 +1,246 @@
+"""Just below the full-contact load: the BEM through the command line on a random sample.
+
+``python -m comparisons bench --near-transition [--points 100] [--seed 20261128]``.  Each point
+is drawn log-uniform: E∞/E0 in RATIO, V/V0 in SPEED, the relative distance d in DISTANCE, and
+the load is p̃_FC(V) (1 − d), p̃_FC from the semi-analytic road (`analytic.transition_load`,
+|E(kV)| hk/2).  Each point runs as a user runs it, one subprocess ``python -m comparisons
+point --solver bem --load L --speed V --ratio R`` at its defaults (rtol 1e-6), whose CPU time
+and peak memory come from its own resource usage (`os.wait4`).  Its JSON record is judged
+against `analytic.solve`: μ, the contact fraction and Δ/h (relative) are right when their true
+error is at most SAFETY times the record's ``error_estimate`` plus FLOOR (the two roads'
+agreement floor).  A point without an answer (a non-zero exit, or no record within LIMIT
+seconds) is refused.
+
+Every finished point is appended at once as one JSON line to the output file (default
+``bench-near-transition-S<seed>.jsonl`` in the working folder); a rerun with the same seed and
+file skips the points already there, so an interrupted run loses nothing it finished.  The
+table goes to standard output, progress to standard error.
+"""
+from __future__ import annotations
+
+import json
+import math
+import os
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+import analytic
+
+#: the sample's box (log-uniform): E∞/E0, V/V0, and the relative distance below p̃_FC(V).
+#: Speeds beyond 1e-3 … 1e4 are the elastic limits (|E(kV)| within 5e-7 of E0 below, the
+#: glassy side reached for every ratio above)
+RATIO = (1.5, 1000.0)
+SPEED = (1e-3, 1e4)
+DISTANCE = (1e-8, 1e-3)
+#: a record is right when each true error is at most SAFETY × its estimate plus FLOOR.  The
+#: estimate is 1.5 × the largest difference of the last grids: errors that oscillate with the
+#: edges' place in their panels can exceed it on one grid (measured up to 0.7 of it near full
+#: contact); 3 is the factor the front-door study of the estimates uses.  FLOOR: the two roads
+#: agree on μ to about 1e-11 relative, below which the reference's rounding decides
+SAFETY = 3.0
+FLOOR = 2e-11
+#: keys judged (all relative), and those only reported (absolute)
+JUDGED = ("mu", "contact_fraction", "penetration")
+REPORTED = ("ka", "ke")
+#: wall-clock limit of one point, seconds (then it is stopped and counted as refused)
+LIMIT = 900.0
+#: default seed of the sample
+SEED = 20261128
+
+
+def _progress(msg):
+    print(msg, file=sys.stderr, flush=True)
+
+
+def sample(points, seed):
+    """The `points` operating points of a seed: dicts with ratio, speed, distance, load."""
+    rng = np.random.default_rng(seed)
+    cols = [np.exp(rng.uniform(math.log(lo), math.log(hi), points))
+            for lo, hi in (RATIO, SPEED, DISTANCE)]
+    out = []
+    for i in range(points):
+        ratio, speed, dist = (float(c[i]) for c in cols)
+        load = analytic.transition_load(speed, ratio) * (1.0 - dist)
+        out.append({"index": i, "ratio": ratio, "speed": speed, "distance": dist,
+                    "load": load})
+    return out
+
+
+def _command(point):
+    return [sys.executable, "-m", "comparisons", "point", "--solver", "bem",
+            "--load", repr(point["load"]), "--speed", repr(point["speed"]),
+            "--ratio", repr(point["ratio"])]
+
+
+def run_point(point, limit=LIMIT):
+    """Run one point through the command line: a dict with the record (or the error), the
+    exit status, its CPU seconds and peak resident memory (bytes; from `os.wait4`, this
+    point's process alone) and wall seconds."""
+    t0 = time.perf_counter()
+    with tempfile.TemporaryFile("w+") as fo, tempfile.TemporaryFile("w+") as fe:
+        proc = subprocess.Popen(_command(point), stdout=fo, stderr=fe, text=True,
+                                start_new_session=True)
+        stopped = False
+        while True:
+            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if time.perf_counter() - t0 > limit:
+                os.killpg(proc.pid, signal.SIGKILL)  # its own session: this point's only
+                pid, status, usage = os.wait4(proc.pid, 0)
+                stopped = True
+                break
+            time.sleep(0.1)
+        proc.returncode = os.waitstatus_to_exitcode(status)  # reaped here, not by Popen
+        fo.seek(0)
+        fe.seek(0)
+        out, err = fo.read(), fe.read()
+    row = {"exit": proc.returncode, "stopped": stopped, "wall": time.perf_counter() - t0,
+           "cpu": usage.ru_utime + usage.ru_stime, "max_rss": usage.ru_maxrss * 1024}
+    record = None
+    if proc.returncode == 0 and not stopped:
+        try:
+            record = json.loads(out.strip().splitlines()[-1])
+        except (ValueError, IndexError):
+            record = None
+    row["record"] = record
+    row["error"] = None if record is not None else (
+        f"stopped after {limit:g} s" if stopped else (err.strip().splitlines() or ["?"])[-1])
+    return row
+
+
+def judge(point, record):
+    """True errors of the record against the semi-analytic road, and the verdict (right when
+    every JUDGED error is at most SAFETY × its estimate + FLOOR)."""
+    ref = analytic.solve(load=point["load"], speed=point["speed"], ratio=point["ratio"])
+    if not ref.success:
+        return {"reference": False}
+    est = record.get("error_estimate") or {}
+    errors, ratios, right = {}, {}, True
+    for key in JUDGED + REPORTED:
+        a, b = record.get(key), getattr(ref, key)
+        if a is None or b is None:
+            continue
+        e = abs(a - b) / abs(b) if key in JUDGED else abs(a - b)
+        errors[key] = e
+        s = est.get(key)
+        if s is not None:
+            ratios[key] = e / s if s > 0 else (0.0 if e == 0 else math.inf)
+        if key in JUDGED and not (s is not None and e <= SAFETY * s + FLOOR):
+            right = False
+    return {"reference": True, "errors": errors, "over_estimate": ratios, "right": right}
+
+
+def _done(path, seed):
+    """Rows already in the output file for this seed, by index."""
+    rows = {}
+    if not os.path.exists(path):
+        return rows
+    with open(path, encoding="utf-8") as fh:
+        for line in fh:
+            try:
+                row = json.loads(line)
+            except ValueError:
+                continue  # a line cut by an interruption
+            if row.get("seed") == seed:
+                rows[row["point"]["index"]] = row
+    return rows
+
+
+def _line(row):
+    p = row["point"]
+    head = (f"| {p['index']:3d} | {p['ratio']:.4g} | {p['speed']:.4g} | {p['distance']:.2e} | "
+            f"{row['cpu']:.1f} | {row['max_rss'] / 2**20:.0f} |")
+    if row["record"] is None:
+        return f"{head} refused | — | {row['error'][:100]} |"
+    rec, j = row["record"], row["judged"]
+    if not j.get("reference"):
+        return f"{head} answered, N = {rec['nodes']} | no reference | |"
+    worst = max(j["over_estimate"].get(k, math.inf) for k in JUDGED)
+    errs = ", ".join(f"{k} {j['errors'][k]:.1e}" for k in JUDGED + REPORTED if k in j["errors"])
+    return (f"{head} {'right' if j['right'] else 'WRONG'}, N = {rec['nodes']} | "
+            f"{worst:.2g} | {errs} |")
+
+
+def run(points=100, seed=SEED, path=None, limit=LIMIT, out=sys.stdout):
+    """The study: print the table and the figures; 0 when at most 1 % is refused and none is
+    wrong, else 1."""
+    path = path or f"bench-near-transition-S{seed}.jsonl"
+    pts = sample(points, seed)
+    done = _done(path, seed)
+    _progress(f"# near the transition: {points} points (seed {seed}); JSON lines in {path}"
+              + (f" ({len(done)} already there)" if done else ""))
+    print(f"# Just below the full-contact load through `point --solver bem` (defaults)\n\n"
+          f"{points} points, seed {seed}: E∞/E0 log-uniform in {RATIO}, V/V0 in {SPEED}, "
+          f"p̃∞ = p̃_FC(V)(1 − d) with d in {DISTANCE}; right: true error of "
+          f"{', '.join(JUDGED)} ≤ {SAFETY:g} × estimate + {FLOOR:g}; limit {limit:g} s a "
+          f"point; {_load_average()}\n", file=out)
+    print("| # | E∞/E0 | V/V0 | d | CPU [s] | peak [MiB] | verdict | worst error/estimate | "
+          "true errors |", file=out)
+    print("| ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- |", file=out)
+    rows = []
+    with open(path, "a", encoding="utf-8") as fh:
+        for p in pts:
+            row = done.get(p["index"])
+            if row is None or row["point"] != p:
+                _progress(f"point {p['index'] + 1}/{points}: E∞/E0 {p['ratio']:.4g}, V/V0 "
+                          f"{p['speed']:.4g}, d {p['distance']:.2e}")
+                got = run_point(p, limit)
+                row = {"seed": seed, "point": p, "exit": got["exit"], "cpu": got["cpu"],
+                       "wall": got["wall"], "max_rss": got["max_rss"],
+                       "record": got["record"], "error": got["error"],
+                       "command": " ".join(_command(p)[1:])}
+                row["judged"] = judge(p, got["record"]) if got["record"] else None
+                fh.write(json.dumps(row, allow_nan=False) + "\n")
+                fh.flush()
+                os.fsync(fh.fileno())
+            rows.append(row)
+            print(_line(row), file=out, flush=True)
+    return _summary(rows, out)
+
+
+def _summary(rows, out):
+    refused = [r for r in rows if r["record"] is None]
+    answered = [r for r in rows if r["record"] is not None]
+    judged = [r for r in answered if r["judged"].get("reference")]
+    wrong = [r for r in judged if not r["judged"]["right"]]
+    cpu = [r["cpu"] for r in rows]
+    n = len(rows)
+    print(f"\n- refused: {len(refused)} of {n} ({100.0 * len(refused) / max(n, 1):.1f} %)",
+          file=out)
+    for r in refused:
+        print(f"  - #{r['point']['index']}: {r['error'][:150]} ({r['cpu']:.0f} s CPU)", file=out)
+    print(f"- wrong: {len(wrong)} of {len(judged)} answered with a reference "
+          f"({len(answered) - len(judged)} answered without one)", file=out)
+    for key in JUDGED + REPORTED:
+        vals = [r["judged"]["over_estimate"][key] for r in judged
+                if key in r["judged"]["over_estimate"]]
+        if vals:
+            print(f"  - {key}: worst true error / estimate {max(vals):.2g}, "
+                  f"{sum(v > 1 for v in vals)} above 1", file=out)
+    if cpu:
+        slow = max(rows, key=lambda r: r["cpu"])
+        print(f"- CPU per point: median {statistics.median(cpu):.1f} s, slowest "
+              f"{slow['cpu']:.1f} s (#{slow['point']['index']}); wall median "
+              f"{statistics.median(r['wall'] for r in rows):.1f} s", file=out)
+        print(f"- peak resident memory of the largest point: "
+              f"{max(r['max_rss'] for r in rows) / 2**20:.0f} MiB", file=out)
+        nodes = [r["record"]["nodes"] for r in answered]
+        if nodes:
+            print(f"- N reached: median 2^{math.log2(statistics.median(nodes)):.1f}, "
+                  f"largest 2^{math.log2(max(nodes)):.0f}", file=out)
+    return 0 if len(refused) <= 0.01 * n and not wrong else 1
+
+
+def _load_average():
+    try:
+        one, five, fifteen = os.getloadavg()
+    except OSError:  # pragma: no cover
+        return "load average unavailable"
+    return f"load average {one:.2f} {five:.2f} {fifteen:.2f} on {os.cpu_count()} cores"

@@ -1,0 +1,67 @@
+"""Just below the full-contact load: the gap step answers at the default accuracy, right.
+
+Points of the near-transition study (`comparisons.bench.near_transition`) that were refused or
+took minutes before the gap step: gaps of 1e-12 h and less (1e-8 below p_FC), a stiff material
+at low speed whose Krylov solve stagnated, and the example of the report.  Each is answered at
+the default rtol and its μ, contact fraction, Δ/h, ka and ke lie within 3 × the estimate
+(+ 2e-11, the two roads' agreement floor) of the semi-analytic road.
+"""
+from __future__ import annotations
+
+import math
+
+import pytest
+
+import analytic
+import bem
+
+#: (E_inf/E0, V/V0, relative distance below p_FC(V))
+HARD = [
+    (11.39, 178.9, 1.58e-8),      # gaps of ~1e-12 h: refused as round-off before
+    (21.46, 7331.0, 2.05e-8),     # glassy side, 2^21 panels
+    (100.0, 24.699309839052606, 7e-8),  # refused at 2^24 after 97 s (ka 3e-6 off)
+    (716.1, 0.06858, 3.86e-4),    # the gap step's Krylov solve stagnated at its floor
+]
+
+
+def _errors(r, ref):
+    return {"mu": abs(r.mu / ref.mu - 1),
+            "contact_fraction": abs(r.contact_fraction / ref.contact_fraction - 1),
+            "penetration": abs(r.penetration / ref.penetration - 1),
+            "ka": abs(r.ka - ref.ka), "ke": abs(r.ke - ref.ke)}
+
+
+@pytest.mark.parametrize("ratio,speed,distance", HARD,
+                         ids=lambda v: f"{v:g}" if isinstance(v, float) else str(v))
+def test_just_below_full_contact_is_answered_and_right(ratio, speed, distance):
+    load = analytic.transition_load(speed, ratio) * (1.0 - distance)
+    r = bem.solve(load=load, speed=speed, ratio=ratio)
+    assert r.success, r.message
+    assert not r.full_contact and r.n_patches == 1
+    ref = analytic.solve(load=load, speed=speed, ratio=ratio)
+    assert ref.success and not ref.full_contact
+    for key, err in _errors(r, ref).items():
+        est = r.error_estimate[key]
+        assert err <= 3.0 * est + 2e-11, (key, err, est)
+
+
+def test_gap_step_gaps_are_exact_where_the_primal_ones_are_round_off():
+    """2e-8 below p_FC the deepest gap is ~1e-12 h: the gap step's gaps are zero on the contact
+    exactly and positive on every free panel; its pressures vanish on the free panels and carry
+    the load."""
+    import numpy as np
+
+    from bem import _grid as S
+    from bem._inputs import Prony, Sinusoid
+    ratio, speed = 21.46, 7331.0
+    load = analytic.transition_load(speed, ratio) * (1.0 - 2.05e-8)
+    grid = S._Grid(Sinusoid(1.0), Prony.standard_linear_solid(ratio), speed, 2 ** 18)
+    res = S._solve_one(grid, load, None, [None], 1e-10, 50, 8, 300,
+                       elastic=(Sinusoid(1.0), Prony(1.0)))
+    assert res["status"] == 0 and res["exact_gaps"]
+    free = ~res["active"]
+    assert 8 <= free.sum() < 200
+    gap, sigma = res["gap"], res["sigma"]
+    assert np.all(gap[res["active"]] == 0.0) and np.all(sigma[free] == 0.0)
+    assert 0.0 < gap.max() < 1e-10 and gap[free].min() > -1e-3 * gap.max()
+    assert sigma.min() >= 0.0 and math.isclose(sigma.mean(), load, rel_tol=1e-12)
