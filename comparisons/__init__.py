@@ -5,7 +5,8 @@
 benchmark suite, the verification of another code's results and a third code driven as a peer
 (`peers/`).
 Operating points cross between the roads as plain dimensionless numbers (units, signs and keys of
-`docs/conventions.md`), never as shared objects.
+`docs/conventions.md`), never as shared objects: the `operating_point.OperatingPoint` stays on
+this side, and `roads` hands each road its own keywords.
 
 Where each job lives (a module imports only its own line and the lines below it):
 
@@ -20,6 +21,9 @@ Where each job lives (a module imports only its own line and the lines below it)
   where it runs.
 - ``roads``, ``peers/``: the adapter to ``bem`` and ``analytic``, the only module that calls
   them, and the third codes run as witnesses.
+- ``operating_point``: the one frozen operating point every door builds (its defaults, the
+  refusal of options that do not apply, SI input made dimensionless, the table from each
+  parameter to its option and keyword); it calls no road.
 - ``convergence`` (order, Richardson, certified digits), ``fields`` (patches and sampled
   fields), ``_io`` (the atomic UTF-8 writer and the readers), ``_errors`` (what a command
   reports), ``_html``, ``progress`` (the throttled progress line): shared by all of the above.

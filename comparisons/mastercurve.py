@@ -273,7 +273,7 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
     from viscosine import materials as vm
     from viscosine.checks import real
 
-    from . import _materials, runner
+    from . import _materials, roads, runner
     temps = [real("temperature", t, "a finite temperature") for t in temperatures]
     vs = [real("speed", v, "a finite sliding speed > 0", lambda x: x > 0.0, unit="m/s")
           for v in speeds]
@@ -302,7 +302,8 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                              "they set the fit of a DMA file")
         base = _materials.from_model(material)
     si = {"nu": nu, "wavelength": wavelength, "amplitude": amplitude}
-    groups = op.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base)
+    groups = op.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base,
+                           groups=roads.si_groups)
     plan = []
     for T in temps:
         m = _materials.at_temperature(base, shift, shift_info, T, option=(

@@ -24,9 +24,6 @@ roads' adapters (`comparisons.roads`) take it as they take a dict, and `spec` is
 from __future__ import annotations
 
 import dataclasses
-import hashlib
-import math
-import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -35,7 +32,6 @@ from viscosine.checks import Refusal, shown
 
 from ._errors import BadInput
 from ._errors import one_line as _one_line
-from ._io import file_bytes
 
 # ------------------------------------------------------------------------------ the defaults
 #: every default of an operating point, applied in this module only.  ``rtol`` is the line
@@ -296,10 +292,10 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
 
     Parameters
     ----------
-    files : dict, optional
-        Already read input files ``{"profile": (info, object), "prony": (info, object),
-        "material": (info, Material), "surface": (info, Surface)}``, so that a sweep reads each
-        file once; otherwise they are read here.
+    files : dict
+        The input files, read (`comparisons.runner.read_files`): ``{"profile": (info, object),
+        "prony": (info, object), "material": (info, Material), "surface": (info, Surface)}``
+        for each file option given.
     material : str, optional
         A material file of any accepted form (`comparisons._materials`), BEM only, not with
         ``prony`` or ``ratio``.
@@ -320,7 +316,7 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
     BadInput
     """
     options = {k: v for k, v in (material_options or {}).items() if v is not None}
-    in_si = options.pop("si", False)
+    options.pop("si", None)  # how the file was read (`runner.read_files`)
     if options and material is None:
         raise refuse(next(iter(options)), "it applies to a --material file (give the material "
                      "with --material FILE)")
@@ -360,15 +356,14 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
             kw["field_points"] = DEFAULTS["field_points"] if nodes is None else nodes
         return OperatingPoint(**kw)
     files = dict(files or {})
-    for name, path in (("profile", profile), ("prony", prony)):
-        if path is not None and name not in files:
-            files[name] = read_input(name, path)
-    if material is not None and "material" not in files:
-        files["material"] = read_material(material, **options, si=in_si)
-    parsed = {}
+    wanted = [n for n, v in (("profile", profile), ("prony", prony), ("material", material))
+              if v is not None]
     if surface is not None and surface.get("kind") == "file":
-        if "surface" not in files:
-            files["surface"] = read_input("surface", surface["path"])
+        wanted.append("surface")
+    if any(n not in files for n in wanted):  # read by the caller (`runner.read_files`)
+        raise TypeError(f"files={sorted(files)}: the parsed {', '.join(wanted)} file(s) needed")
+    parsed = {}
+    if "surface" in wanted:
         info, parsed["surface"] = files["surface"]
         kw["surface"] = {"kind": "file", **info}
     fixed = prony is not None or material is not None
@@ -386,52 +381,8 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
     return OperatingPoint(**kw, parsed=parsed)
 
 
-# ------------------------------------------------------------------------------ input files
-def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
-                  per_decade=None, si=False):
-    """Read a --material file of any accepted form: ``(description, Material)``
-    (`comparisons._materials.read`).
-
-    Raises
-    ------
-    BadInput
-    """
-    from . import _materials
-    try:
-        m = _materials.read(path, temperature=temperature, wlf=wlf, shift_table=shift_table,
-                            max_residual=max_residual, per_decade=per_decade, si=si)
-    except ValueError as exc:
-        raise BadInput(_one_line(exc)) from None
-    return m.info, m
-
-
-def read_input(name, path, **reader_options):
-    """Read a --profile, --prony or --surface file: ``({"path", "sha256"}, parsed object)``.
-
-    The file must be a regular UTF-8 text file; the parsing is the BEM's own
-    (`bem.read_profile`, `bem.read_prony`, `bem.read_surface`, through `comparisons.roads`).
-    Every refusal names the option and the file.
-
-    Raises
-    ------
-    BadInput
-    """
-    from . import roads
-    where = f"--{name} {path}"
-    data = file_bytes(f"--{name}", path)
-    reader = {"profile": roads.read_profile, "prony": roads.read_prony,
-              "surface": roads.read_surface}[name]
-    try:
-        obj = reader(path, **reader_options)
-    except (ValueError, UnicodeDecodeError, OSError) as exc:
-        raise BadInput(f"{where}: {_one_line(exc)}") from None
-    info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
-    info.update(reader_options)  # a surface file in metres: its units and Lx
-    return info, obj
-
-
 # ------------------------------------------------------------------------------ SI inputs
-def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=None):
+def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=None, groups):
     """``--units SI``: SI values of a point or a sweep turned into the dimensionless groups.
 
     Parameters
@@ -446,6 +397,9 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
         V [m/s].
     material : Material, optional
         Read with ``si=True``: reference modulus its relaxed modulus E_r [Pa], time 1 s.
+    groups : callable
+        ``groups(solver, scales)``: the road's dimensionless groups of the SI scales, each
+        checked by the road (`comparisons.roads.si_groups`; this module calls no road).
 
     Returns
     -------
@@ -481,7 +435,7 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
 
     def scales(value, speed):
         return _si_scales(solver, given, material, speed,
-                          {"mean_pressure" if key == "load" else "penetration": value})
+                          {"mean_pressure" if key == "load" else "penetration": value}, groups)
 
     sc, _ = scales(values[0], speeds[0])
     out = {"load": None, "penetration": None}
@@ -496,12 +450,10 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
     return out
 
 
-def _si_scales(solver, given, material, speed, control):
+def _si_scales(solver, given, material, speed, control, groups):
     """The SI front's scales of one point and its groups, checked by the road (a refusal named
     by the option typed)."""
     from viscosine import si as si_front
-
-    from . import roads
     geometry = dict(nu=given["nu"], wavelength=given["wavelength"],
                     amplitude=given["amplitude"], speed=speed, **control)
     try:
@@ -510,7 +462,7 @@ def _si_scales(solver, given, material, speed, control):
                                                               "tau_relax")}, **geometry)
         else:
             sc = si_front.material_scales(E_ref=material.info["E_ref"], tau_ref=1.0, **geometry)
-        return sc, roads.si_groups(solver, sc)
+        return sc, groups(solver, sc)
     except ValueError as exc:
         raise named(exc) from None
 
@@ -526,5 +478,4 @@ def check_field_points(n):
 __all__ = ["DEFAULTS", "FIELD_POINTS", "PARAMETERS", "CLI", "PYTHON", "SPEC_KEYS",
            "OPTIONAL_KEYS", "MATERIAL_OPTIONS", "OperatingPoint", "at", "build", "bem_only",
            "refuse", "named", "option", "public", "from_spec", "ratio_of", "hk_of", "direction_of",
-           "complete_case", "penetration_clears_layer", "read_input", "read_material",
-           "resolve_si", "check_field_points"]
+           "complete_case", "penetration_clears_layer", "resolve_si", "check_field_points"]

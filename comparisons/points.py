@@ -11,8 +11,8 @@ import json
 import os
 import time
 
-from . import operating_point as op
 from . import runner
+from .runner import read_files  # noqa: F401  (sweep's: each input file read once)
 from ._errors import BadInput, Failed
 from ._io import check_output_dir, stderr
 from .fields import write_fields_csv
@@ -73,26 +73,6 @@ def point(spec, fields=None) -> bool:
         write_fields(fields, out, spec)
     print(dump(out["record"]), flush=True)
     return True
-
-
-def read_files(solver, files, *, profile=None, prony=None, material=None,
-               material_options=None) -> dict:
-    """Read (and check) each input file of a BEM sweep once, into ``files`` (option -> what
-    `operating_point.build` takes); a file already there (a --units SI material) is not read again.
-
-    Raises
-    ------
-    BadInput
-        a file that cannot be read, or is not what its option expects.
-    """
-    for option, path in (("profile", profile), ("prony", prony), ("material", material)):
-        if path is not None and solver == "bem" and option not in files and not (
-                option == "material" and prony is not None):
-            files[option] = (op.read_input(option, path) if option != "material" else
-                             op.read_material(path, **{
-                                 k: v for k, v in (material_options or {}).items()
-                                 if v is not None}))
-    return files
 
 
 def _fmt_value(v):

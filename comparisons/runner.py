@@ -20,7 +20,9 @@ its fields and the constraint figures the last line of defence checks.
 """
 from __future__ import annotations
 
+import hashlib
 import math
+import os
 import time
 import warnings as _warnings
 
@@ -34,6 +36,7 @@ from . import roads
 from .gate import check_record, check_surface_record
 from ._errors import BadInput
 from ._errors import one_line as _one_line
+from ._io import file_bytes
 
 def si_block(rec, info):
     """The record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``."""
@@ -73,6 +76,75 @@ def surface_si_block(rec, info):
             "plane_strain_modulus": estar, "units": "m, Pa, m/s"}
 
 
+# ------------------------------------------------------------------------------ input files
+def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
+                  per_decade=None, si=False):
+    """Read a --material file of any accepted form: ``(description, Material)``
+    (`comparisons._materials.read`).
+
+    Raises
+    ------
+    BadInput
+    """
+    from . import _materials
+    try:
+        m = _materials.read(path, temperature=temperature, wlf=wlf, shift_table=shift_table,
+                            max_residual=max_residual, per_decade=per_decade, si=si)
+    except ValueError as exc:
+        raise BadInput(_one_line(exc)) from None
+    return m.info, m
+
+
+def read_input(name, path, **reader_options):
+    """Read a --profile, --prony or --surface file: ``({"path", "sha256"}, parsed object)``.
+
+    The file must be a regular UTF-8 text file; the parsing is the BEM's own
+    (`bem.read_profile`, `bem.read_prony`, `bem.read_surface`, through `comparisons.roads`).
+    Every refusal names the option and the file.
+
+    Raises
+    ------
+    BadInput
+    """
+    where = f"--{name} {path}"
+    data = file_bytes(f"--{name}", path)
+    reader = {"profile": roads.read_profile, "prony": roads.read_prony,
+              "surface": roads.read_surface}[name]
+    try:
+        obj = reader(path, **reader_options)
+    except (ValueError, UnicodeDecodeError, OSError) as exc:
+        raise BadInput(f"{where}: {_one_line(exc)}") from None
+    info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
+    info.update(reader_options)  # a surface file in metres: its units and Lx
+    return info, obj
+
+
+def read_files(solver, files, *, profile=None, prony=None, material=None,
+               material_options=None, surface=None) -> dict:
+    """Read (and check) each input file of a BEM point or sweep once, into ``files`` (option ->
+    ``(description, parsed)``, what `operating_point.build` takes); a file already there (a
+    --units SI material or surface) is not read again.  Nothing on the semi-analytic road (the
+    point refuses the options there).
+
+    Raises
+    ------
+    BadInput
+        a file that cannot be read, or is not what its option expects.
+    """
+    if solver != "bem":
+        return files
+    options = {k: v for k, v in (material_options or {}).items() if v is not None}
+    in_si = bool(options.pop("si", False))
+    for name, path in (("profile", profile), ("prony", prony)):
+        if path is not None and name not in files:
+            files[name] = read_input(name, path)
+    if material is not None and prony is None and "material" not in files:
+        files["material"] = read_material(material, **options, si=in_si)
+    if surface is not None and surface.get("kind") == "file" and "surface" not in files:
+        files["surface"] = read_input("surface", surface["path"])
+    return files
+
+
 # ------------------------------------------------------------------------------ validation
 def validate(spec, door=op.PYTHON):
     """Check a point before any work; raise BadInput naming the input (on the command line,
@@ -106,10 +178,10 @@ def _bem_problem(spec):
     profile = material = None
     if spec.get("profile") is not None:
         obj = spec.get("_profile")
-        profile = obj if obj is not None else op.read_input("profile", spec["profile"]["path"])[1]
+        profile = obj if obj is not None else read_input("profile", spec["profile"]["path"])[1]
     if spec.get("prony") is not None:
         obj = spec.get("_prony")
-        material = obj if obj is not None else op.read_input("prony", spec["prony"]["path"])[1]
+        material = obj if obj is not None else read_input("prony", spec["prony"]["path"])[1]
     elif spec.get("material") is not None:
         material = _material(spec).prony
     return profile, material
@@ -124,7 +196,7 @@ def _surface(spec):
         return obj
     desc = spec["surface"]
     extra = {k: desc[k] for k in ("units", "length") if desc.get(k) is not None}
-    return op.read_input("surface", desc["path"], **extra)[1]
+    return read_input("surface", desc["path"], **extra)[1]
 
 
 def _material(spec):
@@ -147,7 +219,7 @@ def describe_material(spec):
     elif spec.get("prony") is not None:
         obj = spec.get("_prony")
         if obj is None:
-            obj = op.read_input("prony", spec["prony"]["path"])[1]
+            obj = read_input("prony", spec["prony"]["path"])[1]
         info = {"form": "creep", **spec["prony"], "terms": len(obj.J),
                 **_materials.references("creep", False, 1.0, None)}
     else:
@@ -210,7 +282,7 @@ def run(spec, fields=False, deep=None):
                              is not None else si_block(rec, spec["si"]))
         if spec.get("material") is not None and rec.get("success"):
             from . import _materials
-            text = _materials.extrapolation(_material(spec).model, spec["speed"],
+            text = _materials.extrapolation(_material(spec), spec["speed"],
                                             rec["contact_fraction"])
             if text is not None:  # the modulus at these frequencies is the fit's guess
                 extra.append(f"extrapolation: {text}")

@@ -106,7 +106,8 @@ def _record(spec_kw):
 
     from .. import operating_point as op
     from .. import runner
-    spec = op.build("bem", **spec_kw)
+    files = runner.read_files("bem", {}, prony=spec_kw.get("prony"))
+    spec = op.build("bem", **spec_kw, files=files)
     t0 = time.perf_counter()
     res = runner.run(spec, deep=True)
     sec = time.perf_counter() - t0

@@ -8,7 +8,7 @@ import math
 import re
 
 from .. import operating_point as op
-from .. import runner
+from .. import roads, runner
 from .._errors import BadInput, Failed
 from .._io import check_output_dir, check_output_file, stderr
 
@@ -331,6 +331,10 @@ def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=Non
     """The `OperatingPoint` of point's and sweep's options (`operating_point.build`: defaults,
     what applies)."""
     surface = surface_description(args)
+    files = runner.read_files(args.solver, dict(files or {}), profile=args.profile,
+                              prony=args.prony, material=args.material, surface=surface,
+                              material_options={**material_options(args),
+                                                "si": args.units == "SI" or None})
     return op.build(args.solver, load=load, penetration=penetration, speed=speed,
                           ratio=args.ratio, hk=None if surface else args.hk, nodes=args.nodes,
                           rtol=args.rtol, surface=surface, direction=args.direction,
@@ -400,13 +404,13 @@ def units_si(args, files):
         if args.solver != "bem":
             raise op.bem_only("material")
         opts = {k: v for k, v in material_options(args).items() if v is not None}
-        files["material"] = op.read_material(args.material, **opts, si=True)
+        files["material"] = runner.read_material(args.material, **opts, si=True)
         material = files["material"][1]
     several = isinstance(args.speed, list)
 
     def listed(v):
         return None if v is None else (v if several else [v])
-    out = op.resolve_si(args.solver, given, loads=listed(args.load),
+    out = op.resolve_si(args.solver, given, groups=roads.si_groups, loads=listed(args.load),
                             penetrations=listed(args.penetration), speeds=listed(args.speed),
                             material=material)
     for key in ("load", "penetration", "speed"):
@@ -437,7 +441,7 @@ def _surface_si(args, files):
     if args.wavelength is None:
         raise BadInput("--wavelength is missing: with --units SI and --surface FILE it is the "
                        "cell's side Lx [m] (the file's heights are in metres)")
-    info, surface = op.read_input("surface", args.surface, units="SI",
+    info, surface = runner.read_input("surface", args.surface, units="SI",
                                       length=args.wavelength)
     files["surface"] = (info, surface)
     args.amplitude = surface.amplitude / (2.0 * math.pi / args.wavelength)
