@@ -97,7 +97,7 @@ def test_ratio_one_ulp_above_one():
 @pytest.mark.parametrize("kw,name,allowed", [
     (dict(load=1e-320), "load", "in [1e-40, 1e+40]"),
     (dict(load=1e41), "load", "in [1e-40, 1e+40]"),
-    (dict(ratio=1e308), "ratio", "≤ 10000"),
+    (dict(ratio=1e308), "ratio", "≤ 1e+08"),
     (dict(ratio=1 + 1e-16), "ratio", "E∞/E0 > 1"),  # 1 + 1e-16 is 1.0 in double precision
     (dict(hk=1e308), "hk", "in [1e-06, 1e+06]"),
     (dict(hk=1e-300), "hk", "in [1e-06, 1e+06]"),

@@ -67,6 +67,12 @@ def _assert_valid(sol):
     assert rec["patches"][0]["load"] == sol.load and sol.n_patches == 1
 
 
+def _rho_floor(sol, tol):
+    """``tol``, or the round-off of a difference of terms ρ times larger (50 ρ ε) where that
+    is larger: the (2.14) check and the penetration target (analytic/solver.py, _RHO_BOUND)."""
+    return max(tol, 50.0 * 2.220446049250313e-16 * sol.ratio)
+
+
 def _assert_consistent(sol):
     c = sol.check()
     assert c["min_pressure"] >= -1e-9, c
@@ -75,7 +81,8 @@ def _assert_consistent(sol):
                 "pressure_at_edges", "gap_at_edges", "friction_error"):
         assert c[key] < QUADRATURE, (key, c)
     for key, val in sol.residuals.items():
-        assert val < QUADRATURE, (key, val)
+        tol = _rho_floor(sol, QUADRATURE) if key in ("closure_2_14", "target") else QUADRATURE
+        assert val < tol, (key, val)
 
 
 @_settings(60)
@@ -85,7 +92,8 @@ def test_every_accepted_point_is_a_consistent_answer(control, speed, ratio, hk):
     _assert_valid(sol)
     _assert_consistent(sol)
     if "penetration" in control:
-        assert sol.penetration == pytest.approx(control["penetration"], rel=1e-11)
+        assert sol.penetration == pytest.approx(control["penetration"],
+                                                rel=_rho_floor(sol, 1e-11))
 
 
 @_settings(300)
@@ -112,8 +120,10 @@ def test_penetration_and_half_width_grow_with_the_load(load, factor, speed, rati
        ratio=RATIOS, hk=HKS)
 def test_westergaard_at_extreme_speeds(load, speed, ratio, hk):
     """E0 when the memory lengths (V/V0 and V/V0 over ρ) are far below the contact and the
-    gap; E∞ at V/V0 ≥ 1e8, where the deviation is O((ka V0/V)²)."""
+    gap; E∞ at V/V0 ≥ 1e8 and V/V0 ≥ 1e4 ρ (the relaxation time is τ/ρ), where the deviation is
+    O((ka V0/V)²)."""
     m = 1.0 if speed < 1.0 else ratio
+    assume(m == 1.0 or speed >= 1e4 * ratio)
     sol = analytic.solve(load=load, speed=speed, ratio=ratio, hk=hk)
     assert sol.success
     if load >= westergaard.full_contact_load(hk, m) * (1.0 + 1e-12):
@@ -129,7 +139,7 @@ def test_westergaard_at_extreme_speeds(load, speed, ratio, hk):
         assume(scale < 1e-9)
         tol = scale + LIMIT
     else:
-        tol = LIMIT
+        tol = _rho_floor(sol, LIMIT)  # Δ/h: a difference of terms ρ times larger
     assert sol.ka == pytest.approx(ka_w, rel=tol)
     assert sol.penetration == pytest.approx(westergaard.penetration(load, hk, m), rel=tol)
 

@@ -113,7 +113,7 @@ ODD = [
     (dict(load=0.3, ratio=1e308), "ratio=1e+308"),
     (dict(load=0.3, ratio=1 + 1e-16), "ratio=1.0"),
     (dict(load=0.3, ratio=1 + 1e-13), "ratio="),
-    (dict(load=0.3, ratio=1e5), "ratio=100000.0"),
+    (dict(load=0.3, ratio=1e9), "ratio=1000000000.0"),
     (dict(load=0.3, hk=1e308), "hk=1e+308"),
     (dict(load=0.3, speed=1e308), "speed=1e+308"),
     (dict(load=0.3, speed=1e-40), "speed=1e-40"),
@@ -123,7 +123,7 @@ ODD = [
     (dict(load=0.3, material=bem.Prony(1.0, (0.5,), (1e-320,))), "material="),
     (dict(load=0.3, material=bem.Prony(1.0, (0.5,), (1e300,))), "material="),
     (dict(load=0.3, material=bem.Prony(1.0, (1e-14,), (1.0,))), "material="),
-    (dict(load=0.3, material=bem.Prony(1.0, (0.99999,), (1.0,))), "material="),
+    (dict(load=0.3, material=bem.Prony(1.0, (1.0 - 1e-9,), (1.0,))), "material="),
     (dict(load=0.3, material=bem.Prony(1e-300, (5e-301,), (1.0,))), "material="),
     (dict(load=0.3, profile=bem.Harmonics([1e-9], [0.0])), "profile="),
 ]
