@@ -217,3 +217,42 @@ def test_the_front_of_analytic_takes_only_the_public_names_from_the_references()
         if _in_references(t):
             taken.add(t)
     assert taken == {"analytic.references"} | {f"analytic.references.{n}" for n in FRONT_NAMES}
+
+
+# ------------------------------------------------------------------------------ the operating point
+#: a case's or spec's key whose default a module could write again (`.get("ratio", 3.0)`)
+POINT_KEYS = ("ratio", "hk", "direction", "rtol", "field_points", "nodes")
+
+
+def _literal_defaults(path):
+    """(line, key) of every ``x.get("<point key>", <number>)`` in a module."""
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if (isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute)
+                and node.func.attr == "get" and len(node.args) == 2
+                and isinstance(node.args[0], ast.Constant) and node.args[0].value in POINT_KEYS
+                and isinstance(node.args[1], ast.Constant)
+                and isinstance(node.args[1].value, (int, float))):
+            yield node.lineno, node.args[0].value
+
+
+def test_only_the_operating_point_writes_a_points_defaults():
+    for name, path in MODULES.items():
+        if name == "comparisons.operating_point":
+            continue
+        for line, key in _literal_defaults(path):
+            pytest.fail(f"{name}:{line} writes the default of {key!r}: use "
+                        "comparisons.operating_point (DEFAULTS, ratio_of, hk_of, direction_of)")
+        text = path.read_text(encoding="utf-8")
+        assert not re.search(r"^DEFAULTS\s*=", text, re.M), f"{name} defines DEFAULTS"
+
+
+def test_no_module_reads_an_error_text_back_into_an_option_name():
+    # a refusal carries its parameter (viscosine.checks.Refusal); operating_point.named says it
+    pattern = re.compile(r"re\.match\([^)]*is not allowed|split\(\": \", 1\)\[-1\]")
+    for name, path in MODULES.items():
+        assert not pattern.search(path.read_text(encoding="utf-8")), name
+
+
+def test_the_operating_point_calls_no_road():
+    assert not {"comparisons.roads", "comparisons.runner"} & _arrows()[
+        "comparisons.operating_point"]
