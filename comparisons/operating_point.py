@@ -315,35 +315,9 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
     ------
     BadInput
     """
-    options = {k: v for k, v in (material_options or {}).items() if v is not None}
-    options.pop("si", None)  # how the file was read (`runner.read_files`)
-    if options and material is None:
-        raise refuse(next(iter(options)), "it applies to a --material file (give the material "
-                     "with --material FILE)")
-    if material is not None and prony is not None:
-        raise refuse("material", "--prony gives the material already (--material reads the same "
-                     "creep-series files, and relaxation series and DMA curves)")
-    if solver == "analytic":
-        for name, value in (("thickness", layer), ("profile", profile), ("prony", prony),
-                            ("material", material), ("rtol", rtol), ("max_nodes", max_nodes)):
-            if value is not None:
-                raise bem_only(name)
-        if nodes is not None and not fields:
-            raise refuse("nodes", "on the semi-analytic road --nodes is the number of points of "
-                         "--fields, and no --fields was given")
-    elif solver == "bem":
-        if hk is not None and profile is not None:
-            raise refuse("hk", "the --profile file fixes the indenter and its amplitude")
-        if ratio is not None and (prony is not None or material is not None):
-            raise refuse("ratio", f"the --{'prony' if prony is not None else 'material'} file "
-                         "fixes the material")
-        if nodes is not None and (rtol is not None or max_nodes is not None):
-            raise refuse("rtol" if rtol is not None else "max_nodes",
-                         f"--nodes {nodes} fixes the mesh; --rtol and --max-nodes steer the "
-                         "adaptive refinement (without --nodes)")
-    else:
-        raise BadInput(f"--solver {solver!r} is not allowed: analytic or bem")
-
+    _refuse_inapplicable(solver, ratio=ratio, hk=hk, nodes=nodes, rtol=rtol,
+                         max_nodes=max_nodes, profile=profile, prony=prony, fields=fields,
+                         material=material, material_options=material_options, layer=layer)
     kw = dict(solver=solver, load=load, penetration=penetration, speed=speed, si=si,
               layer=None if layer is None else dict(layer))
     if surface is not None:
@@ -379,6 +353,39 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
         if name in files:
             kw[name], parsed[name] = files[name]
     return OperatingPoint(**kw, parsed=parsed)
+
+
+def _refuse_inapplicable(solver, *, ratio, hk, nodes, rtol, max_nodes, profile, prony, fields,
+                         material, material_options, layer):
+    """`build`'s refusals: every option given where it does not apply (BadInput)."""
+    options = {k: v for k, v in (material_options or {}).items() if v is not None}
+    options.pop("si", None)  # how the file was read (`runner.read_files`)
+    if options and material is None:
+        raise refuse(next(iter(options)), "it applies to a --material file (give the material "
+                     "with --material FILE)")
+    if material is not None and prony is not None:
+        raise refuse("material", "--prony gives the material already (--material reads the same "
+                     "creep-series files, and relaxation series and DMA curves)")
+    if solver == "analytic":
+        for name, value in (("thickness", layer), ("profile", profile), ("prony", prony),
+                            ("material", material), ("rtol", rtol), ("max_nodes", max_nodes)):
+            if value is not None:
+                raise bem_only(name)
+        if nodes is not None and not fields:
+            raise refuse("nodes", "on the semi-analytic road --nodes is the number of points of "
+                         "--fields, and no --fields was given")
+    elif solver == "bem":
+        if hk is not None and profile is not None:
+            raise refuse("hk", "the --profile file fixes the indenter and its amplitude")
+        if ratio is not None and (prony is not None or material is not None):
+            raise refuse("ratio", f"the --{'prony' if prony is not None else 'material'} file "
+                         "fixes the material")
+        if nodes is not None and (rtol is not None or max_nodes is not None):
+            raise refuse("rtol" if rtol is not None else "max_nodes",
+                         f"--nodes {nodes} fixes the mesh; --rtol and --max-nodes steer the "
+                         "adaptive refinement (without --nodes)")
+    else:
+        raise BadInput(f"--solver {solver!r} is not allowed: analytic or bem")
 
 
 # ------------------------------------------------------------------------------ SI inputs
