@@ -59,6 +59,8 @@ class Material(NamedTuple):
     prony: object   # bem.Prony: the creep series in E_ref and tau_ref
     model: object   # viscosine.materials.Maxwell at the temperature (None for a creep file)
     curve: object = None  # viscosine.materials.MasterCurve a DMA fit was made to
+    #: measured frequencies (rad per tau_ref, at the material's temperature), or None
+    window: tuple | None = None
 
 
 def sls_description(ratio) -> dict:
@@ -98,7 +100,8 @@ def shift_from_options(wlf=None, shift_table=None):
 
 
 def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
-         per_decade=None, loss_weight=None, si=False, option="--material") -> Material:
+         per_decade=None, loss_weight=None, si=False, option="--material",
+         reference_temperature=None) -> Material:
     """Read a material file of any accepted form, at a temperature, for the BEM road.
 
     Parameters
@@ -115,6 +118,10 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     si : bool
         Units of the file: SI (series in Pa and s; a DMA curve in the unit its header names),
         reference modulus E_r [Pa] and 1 s; else the file's own units (module docstring).
+    reference_temperature : float, optional
+        Raw isotherms (``sweeps``) only: the temperature of their master curve (default: the
+        ``temperature``, else the isotherm nearest the middle of the measured range).  The
+        isotherms carry their own shift: no ``wlf`` or ``shift_table`` with them.
 
     Raises
     ------
@@ -125,24 +132,30 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
 
     data = file_bytes(option, path)
     where = f"{option} {path}"
-    if (wlf is None and shift_table is None) != (temperature is None):
+    try:
+        form = vm.material_form(path, data=data)
+    except ValueError as exc:
+        raise ValueError(f"{where}: {one_line(exc)}") from None
+    if form == "sweeps":
+        if wlf is not None or shift_table is not None:
+            raise ValueError(f"{'--wlf' if wlf is not None else '--shift-table'} is not allowed "
+                             f"with raw isotherms ({path}): their own shifts move them to "
+                             "--temperature")
+    elif (wlf is None and shift_table is None) != (temperature is None):
         if temperature is None:
             raise ValueError(f"{'--wlf' if wlf is not None else '--shift-table'} is not allowed "
                              "without --temperature: it shifts the material to that temperature")
         raise ValueError(f"--temperature {temperature!r} is not allowed without --wlf C1 C2 TREF "
                          "or --shift-table FILE: the shift a_T(T) of the material's times")
-    try:
-        form = vm.material_form(path, data=data)
-    except ValueError as exc:
-        raise ValueError(f"{where}: {one_line(exc)}") from None
     fit_options = {"max_residual": max_residual, "per_decade": per_decade,
                    "loss_weight": loss_weight}
     given = [k for k, v in fit_options.items() if v is not None]
-    if form != "dma" and given:
+    if form not in ("dma", "sweeps") and given:
         raise ValueError(f"--{given[0].replace('_', '-')} is not allowed here: it sets the Prony "
                          f"fit of a DMA master curve, and {path} is a {form} series")
     shift, shift_info = shift_from_options(wlf, shift_table)
-    fit_info = curve = None
+    fit_info = curve = model = None
+    extra = {}
     try:
         if form == "creep":
             prony = roads.prony(*vm.read_creep(path, option="prony", data=data))
@@ -155,22 +168,42 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         else:
             if form == "relaxation":
                 model = vm.read_relaxation(path, data=data)
-            else:
-                curve = vm.read_dma(path, data=data)
+            elif form in ("dma", "sweeps"):
+                if form == "dma":
+                    curve = vm.read_dma(path, data=data)
+                else:
+                    sp = _superposed(vm, path, temperature, reference_temperature)
+                    curve, extra["superposition"] = sp.curve, sp.as_dict()
+                    extra["temperature"] = sp.reference_temperature
                 model = _fit(vm, curve, fit_options)
                 if si:
                     model = model.in_pascals()
+            else:
+                model = _other_form(vm, form, path, extra)
+                if si and model.fit is not None:
+                    model = model.in_pascals()
+            _check_range(model, form)
             terms = len([e for e in model.E if e > 0.0])
-            e_ref = model.E_r if (form == "dma" or si) else 1.0
+            e_ref = model.E_r if (form in FITTED or si) else 1.0
             prony = roads.prony(*model.creep(E_ref=e_ref, tau_ref=1.0))
             fit_info = _fit_info(model)
+        if model is None:
+            _check_creep_range(prony)
     except ValueError as exc:
         raise ValueError(f"{where}: {one_line(exc)}") from None
+    window = model.fit.window if model is not None and model.fit is not None else None
+    header = vm.read_window(path, data=data)
+    if window is None and header is not None:
+        window = header                       # a series written with its data's window
+        extra["window_from"] = "the file's '# measured window' line"
     info = {"form": form, "path": os.path.abspath(path), "sha256": _sha256(data),
             "terms": terms, **references(form, si, e_ref, fit_info),
             "temperature": None, "shift": None, "log10_aT": None,
-            "fit": fit_info, "units": "SI" if si else "file"}
-    m = Material(info, prony, model, curve)
+            "fit": fit_info, "units": "SI" if si else "file",
+            "measured_window": None if window is None else list(window), **extra}
+    m = Material(info, prony, model, curve, window)
+    if form == "sweeps":
+        return m                              # at its reference temperature: no shift
     if shift is not None:
         m = at_temperature(m, shift, shift_info, temperature,
                            "--wlf" if wlf is not None else f"--shift-table {shift_table}")
@@ -181,6 +214,11 @@ def _fit_info(model):
     f = model.fit
     if f is None:
         return None
+    if not hasattr(f, "storage_max"):          # a fit to E(t) or J(t)
+        return {"kind": f.kind, "rms": f.rms, "max_residual": f.max, "terms": f.terms,
+                "candidates": f.candidates, "per_decade": f.per_decade, "points": f.points,
+                "modulus_unit": f.modulus_unit, "window": list(f.window),
+                "seconds": f.seconds, "kk_range": None}
     return {"max_residual": f.max_residual, "bound": f.bound, "storage_max": f.storage_max,
             "storage_rms": f.storage_rms, "loss_max": f.loss_max, "loss_rms": f.loss_rms,
             "tan_delta_max": f.tan_delta_max, "per_decade": f.per_decade,
@@ -192,6 +230,85 @@ def _fit_info(model):
             "decades": [dict(d) for d in f.decades], "worst": [dict(p) for p in f.worst],
             "points": f.points, "merged": f.merged, "drops": list(f.drops),
             "relaxed_floor": f.relaxed_floor, "warnings": list(f.warnings)}
+
+
+#: forms whose series is a fit to data: E_ref is the fit's relaxed modulus, tau_ref 1 s
+FITTED = ("dma", "sweeps", "time")
+
+
+def _superposed(vm, path, temperature, reference_temperature):
+    """Raw isotherms shifted onto their master curve at ``temperature`` (else at
+    ``reference_temperature``, else at the isotherm nearest the middle of the range)."""
+    sweeps = vm.read_sweeps(path)
+    if sweeps.kind == "G":
+        raise ValueError("isotherms of E' and E'' (tensile): this file holds G' and G''; "
+                         "convert with E = 2 (1 + nu) G")
+    temps = sweeps.temperatures
+    t0 = temperature if temperature is not None else reference_temperature
+    if t0 is None:
+        t0 = float(temps[min(range(temps.size),
+                             key=lambda i: abs(temps[i] - 0.5 * (temps[0] + temps[-1])))])
+    try:
+        return vm.superpose(sweeps, t0)
+    except ValueError as exc:
+        text = one_line(exc)
+        if text.startswith("reference_temperature="):
+            name = "--temperature" if temperature is not None else "--reference-temperature"
+            text = f"{name} {text[len('reference_temperature='):]}"
+        raise ValueError(text) from None
+
+
+def _other_form(vm, form, path, extra):
+    """The series of an E(t)/J(t) table (fitted) or of an FE card (read)."""
+    if form == "time":
+        data = vm.read_time_data(path)
+        if data.shear:
+            raise ValueError("a tensile E(t) or J(t): this file holds G(t); convert with "
+                             "E = 2 (1 + nu) G")
+        return vm.fit_time_data(data)
+    extra["card"] = vm.card_form(path)
+    return vm.read_card(path)
+
+
+def fitted_shift(m: Material):
+    """The WLF fitted to the isotherms of a ``sweeps`` material and its record's ``shift``
+    (constants, errors, residual, the range where it holds), or (None, None)."""
+    from viscosine import materials as vm
+    sp = m.info.get("superposition")
+    if sp is None:
+        return None, None
+    w = sp["wlf"]
+    info = {"kind": "WLF fitted to the isotherms", "C1": w["C1"], "C2": w["C2"],
+            "T_ref": w["T_ref"], "C1_error": w["C1_error"], "C2_error": w["C2_error"],
+            "rms": w["rms"], "holds": w["holds"]}
+    return vm.WLF(w["C1"], w["C2"], w["T_ref"]), info
+
+
+def _ratio_limit():
+    low, high, _ = roads.accepted("bem")["ratio"]
+    return high
+
+
+def _check_range(model, form):
+    """Refuse, in the file's own relaxation numbers, a series whose glassy over relaxed modulus
+    the BEM road does not take (it would refuse the creep series the user never wrote)."""
+    high = _ratio_limit()
+    ratio = model.glassy / model.E_r
+    unit = (getattr(model.fit, "modulus_unit", None) if model.fit is not None else None) or ""
+    if ratio > high:
+        unit = f" {unit}" if unit else ""
+        raise ValueError(f"glassy/relaxed (E_r + sum E_i)/E_r = {model.glassy:.4g}{unit}/"
+                         f"{model.E_r:.4g}{unit} = {ratio:.3g} is above {high:g}, the largest "
+                         "the BEM takes")
+
+
+def _check_creep_range(prony):
+    """The same for a creep file, in its numbers J0 and J(0+) = J0 - sum J_i."""
+    high = _ratio_limit()
+    jp = prony.J0 - sum(prony.J)
+    if prony.J and prony.J0 / jp > high:
+        raise ValueError(f"E∞/E0 = J0/J(0+) = {prony.J0:.4g}/{jp:.4g} = {prony.J0 / jp:.3g} is "
+                         f"above {high:g}, the largest the BEM takes")
 
 
 def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") -> Material:
@@ -219,9 +336,11 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
     else:
         model = model.at_temperature(shift, temperature)
         prony = roads.prony(*model.creep(E_ref=m.info["E_ref"] or 1.0, tau_ref=1.0))
+    window = None if m.window is None else (m.window[0] / a, m.window[1] / a)
     info = {**m.info, "temperature": float(temperature), "shift": shift_info,
-            "log10_aT": log_a, "fit": _fit_info(model) if model is not None else None}
-    return Material(info, prony, model, m.curve)
+            "log10_aT": log_a, "fit": _fit_info(model) if model is not None else None,
+            "measured_window": None if window is None else list(window)}
+    return Material(info, prony, model, m.curve, window)
 
 
 def from_model(model) -> Material:
@@ -232,7 +351,8 @@ def from_model(model) -> Material:
         raise ValueError(f"material={model!r} is not allowed: a file name or a "
                          "viscosine.materials.Maxwell (Pa, s)")
     model = model.in_pascals()
-    form = "dma" if model.fit is not None else "relaxation"
+    form = ("relaxation" if model.fit is None else
+            "dma" if hasattr(model.fit, "storage_max") else "time")
     source = model.fit.source if model.fit is not None else None
     fit_info = _fit_info(model)
     sha = None
@@ -243,8 +363,10 @@ def from_model(model) -> Material:
             "terms": len([e for e in model.E if e > 0.0]),
             **references(form, True, model.E_r, fit_info),
             "temperature": model.temperature, "shift": None, "log10_aT": None,
-            "fit": fit_info, "units": "SI"}
-    return Material(info, roads.prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model)
+            "fit": fit_info, "units": "SI",
+            "measured_window": None if model.fit is None else list(model.fit.window)}
+    return Material(info, roads.prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model,
+                    window=None if model.fit is None else model.fit.window)
 
 
 def _fit(vm, curve, options):
@@ -264,19 +386,22 @@ def references(form, si, e_ref, fit_info) -> dict:
     if si:
         e_is = "E_r, the relaxed modulus of the material [Pa]"
         t_is = "1 s"
-    elif form == "dma":
+    elif form in FITTED:
         unit = (fit_info or {}).get("modulus_unit") or "the data's modulus unit"
         e_is = f"E_r, the relaxed modulus of the Prony fit [{unit}]"
-        t_is = "1 s, the time unit of the DMA frequencies (rad/s or Hz)"
+        t_is = ("1 s, the time unit of the data's times" if form == "time" else
+                "1 s, the time unit of the DMA frequencies (rad/s or Hz)")
     else:
         e_is = ("the modulus unit of the file (compliances J0, J_i in 1/E_ref)" if form == "creep"
                 else "the modulus unit of the file (moduli E_r, E_i in E_ref)")
+        # a card's times are relaxation times too
         t_is = ("the time unit of the file, whose times are creep (retardation) times"
                 if form == "creep" else
                 "the time unit of the file, whose times are relaxation times (converted "
                 "exactly to creep times)")
     kind = {"creep": "creep-series file", "relaxation": "relaxation-series file",
-            "dma": "DMA master curve"}[form]
+            "dma": "DMA master curve", "sweeps": "raw isotherms shifted onto a master curve",
+            "time": "E(t) or J(t) table", "card": "FE Prony card"}[form]
     return {"E_ref": e_ref, "E_ref_is": e_is, "tau_ref": 1.0, "tau_ref_is": t_is,
             "time_unit": f"speed = V tau_ref k with tau_ref = {t_is} ({kind}); load = "
                          "p_inf (1 - nu^2)/E_ref"}
@@ -286,6 +411,16 @@ def reread(info) -> Material:
     """The material of a spec's description (a worker that did not receive the parsed one)."""
     shift = info.get("shift") or {}
     fit = info.get("fit") or {}
+    if info.get("form") == "sweeps":          # their master curve, maybe moved by their WLF
+        fitted = shift.get("kind") == "WLF fitted to the isotherms"
+        base = read(info["path"], temperature=None if fitted else info.get("temperature"),
+                    reference_temperature=shift.get("T_ref") if fitted else None,
+                    max_residual=fit.get("bound"), si=info.get("units") == "SI")
+        if not fitted:
+            return base
+        from viscosine import materials as vm
+        return at_temperature(base, vm.WLF(shift["C1"], shift["C2"], shift["T_ref"]), shift,
+                              info["temperature"])
     return read(info["path"], temperature=info.get("temperature"),
                 wlf=(shift["C1"], shift["C2"], shift["T_ref"]) if shift.get("kind") == "WLF"
                 else None,
@@ -303,13 +438,27 @@ def probed(speed, contact_fraction):
     return speed, speed * top
 
 
-def extrapolation(model, speed, contact_fraction):
-    """The warning of a DMA fit probed outside its measured window, or None."""
-    if model is None or getattr(model, "fit", None) is None or not speed > 0.0:
+def extrapolation(material, speed, contact_fraction):
+    """The warning of a point whose frequencies leave the material's measured window (a fit's
+    data, or a series file's '# measured window' line), or None.
+
+    ``material``: a `Material` (or, as before, a fitted `Maxwell`).
+    """
+    window = getattr(material, "window", None)
+    if window is None:
+        fit = getattr(material, "fit", None)
+        window = None if fit is None else fit.window
+    if window is None or not speed > 0.0:
         return None
     lo, hi = probed(speed, contact_fraction)
-    text = model.extrapolation_warning(lo, hi)
-    if text is None:
+    w0, w1 = window
+    below = math.log10(w0 / lo) if lo < w0 else 0.0
+    above = math.log10(hi / w1) if hi > w1 else 0.0
+    if below <= 0.0 and above <= 0.0:
         return None
-    return (f"{text} (harmonics n = 1..{round(hi / lo)} of the contact at speed {speed:.4g}; "
-            "frequencies in rad/s)")
+    sides = [f"{d:.2g} decade(s) {side}" for d, side in ((below, "below"), (above, "above"))
+             if d > 0.0]
+    return (f"frequencies {lo:.3g}..{hi:.3g} reach {' and '.join(sides)} the measured window "
+            f"{w0:.3g}..{w1:.3g} of the material's data: the modulus there is extrapolated by "
+            f"the Prony series (harmonics n = 1..{round(hi / lo)} of the contact at speed "
+            f"{speed:.4g}; frequencies in rad per tau_ref)")

@@ -281,14 +281,15 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
         raise ValueError("temperatures=[] is not allowed: at least one temperature")
     if not vs:
         raise ValueError("speeds=[] is not allowed: at least one speed [m/s]")
-    if not isinstance(shift, (vm.WLF, vm.ShiftTable, NoShift)):
+    if shift is not None and not isinstance(shift, (vm.WLF, vm.ShiftTable, NoShift)):
         raise ValueError(f"shift={shift!r} is not allowed: a viscosine.materials.WLF or "
-                         "ShiftTable (a_T of the material's times), or NoShift (one temperature)")
+                         "ShiftTable (a_T of the material's times), NoShift (one temperature), "
+                         "or None (raw isotherms: the WLF fitted to them)")
     if isinstance(shift, NoShift) and any(t != shift.T_ref for t in temps):
         raise ValueError(f"--temperatures {' '.join(f'{t:g}' for t in temps)} is not allowed "
                          f"without a shift: only the material's own temperature, {shift.T_ref:g} "
                          "(others need --wlf or --shift-table)")
-    if shift_info is None:
+    if shift is not None and shift_info is None:
         shift_info = ({"kind": "WLF", "C1": shift.C1, "C2": shift.C2, "T_ref": shift.T_ref}
                       if isinstance(shift, vm.WLF) else
                       {"kind": "none", "T_ref": shift.T_ref} if isinstance(shift, NoShift) else
@@ -301,6 +302,11 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
             raise ValueError("max_residual, per_decade are not allowed with a Maxwell series: "
                              "they set the fit of a DMA file")
         base = _materials.from_model(material)
+    if shift is None:                         # raw isotherms: the WLF fitted to their shifts
+        shift, shift_info = _materials.fitted_shift(base)
+        if shift is None:
+            raise ValueError("shift=None is not allowed: a material file of raw isotherms (or "
+                             "give --wlf or --shift-table)")
     si = {"nu": nu, "wavelength": wavelength, "amplitude": amplitude}
     groups = op.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base,
                            groups=roads.si_groups)
@@ -381,6 +387,17 @@ def _append(path, row):
 
 
 # ------------------------------------------------------------------------------ into a folder
+def _raw_isotherms(material) -> bool:
+    """Whether ``material`` is a file of raw isotherms (which carry their own shift)."""
+    from viscosine import materials as vm
+    if not isinstance(material, (str, os.PathLike)):
+        return False
+    try:
+        return vm.material_form(os.fspath(material)) == "sweeps"
+    except ValueError:
+        return False                           # refused, by name, when it is read
+
+
 def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, speeds,
                 mean_pressure, wavelength, amplitude, nu, nodes=None, rtol=None,
                 max_residual=None, per_decade=None) -> int:
@@ -404,7 +421,9 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
 
     check_output_dir("--out", out, create=False)
     try:
-        if wlf is None and shift_table is None:  # the material's own temperature only
+        if wlf is None and shift_table is None and _raw_isotherms(material):
+            shift, shift_info = None, None      # the WLF fitted to the isotherms
+        elif wlf is None and shift_table is None:  # the material's own temperature only
             if len(temperatures) != 1:
                 raise BadInput(f"--temperatures {' '.join(f'{t:g}' for t in temperatures)} is "
                                "not allowed without --wlf or --shift-table: one, the material's own")

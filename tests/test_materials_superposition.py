@@ -109,6 +109,12 @@ def test_refusals(tmp_path):
             f"{T},{f},{1 + f + T / 100},{0.1 + f / 10}\n" for T in (0, 10, 20) for f in (1, 2, 3, 4)),
             encoding="utf-8")
         superpose(read_sweeps(p), 10.0, vertical="temperature")
+    # 10 degrees apart the two coldest isotherms share less than the least overlap allowed at
+    # the true shift (2.8 decades of a 3-decade sweep): refused, not placed at the edge
+    wide = tmp_path / "wide.csv"
+    write_sweeps(wide, isotherm_rows(TRUTH, SHIFT, np.arange(-30.0, 61.0, 10.0), FREQ))
+    with pytest.raises(ValueError, match="-30 and -20 overlay best where they share only 0.2"):
+        superpose(read_sweeps(wide), 20.0)
     bad = tmp_path / "two.csv"
     bad.write_text("temperature,frequency,storage,loss\n0,1,2,0.1\n0,2,3,0.1\n0,3,4,0.1\n"
                    "10,1,2,0.1\n10,2,3,0.1\n10,3,4,0.1\n", encoding="utf-8")

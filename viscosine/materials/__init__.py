@@ -33,7 +33,11 @@ Conventions
 Modules: ``_series`` (the two Prony forms and their interconversion), ``_dma`` (master curves
 and their checks), ``_fit`` (the Prony fit and its report), ``_temperature`` (WLF and shift
 tables), ``_files`` (every file format; ``_text`` cuts the text of a table: separators, decimal
-commas, comments), ``_units`` (the units a file may state).
+commas, comments), ``_units`` (the units a file may state); ``_sweeps`` (raw isotherms at several
+temperatures) and ``_superposition`` (their shifts, WLF and master curve), ``_timedata`` (E(t)
+and J(t) fitted directly), ``_cards`` (ANSYS, Abaqus, LS-DYNA cards and pyvisco tables),
+``_window`` (the measured window written into and read from series files), ``_synthetic`` (data
+made from a known series: the test set).
 
 The two forms are exactly interconvertible: with ``p = -s`` (s the Laplace variable) the modulus
 ``E(p) = E_r - p sum_i E_i theta_i/(1 - p theta_i)`` is decreasing between its poles
@@ -60,7 +64,16 @@ from ._fit import FitReport, fit_prony
 from ._series import Creep, Maxwell
 from ._temperature import WLF, ShiftTable
 from ._units import PASCALS
+from ._cards import card_form, read_card, write_card
+from ._superposition import Superposition, WLFFit, fit_wlf, superpose
+from ._sweeps import Sweeps, read_sweeps, write_sweeps
+from ._timedata import TimeData, TimeFitReport, fit_time_data, read_time_data
+from ._window import read_window, write_series
 
 __all__ = ["Creep", "FORMS", "FitReport", "MERGE_RTOL", "MIN_POINTS", "MasterCurve", "Maxwell",
            "PASCALS", "ShiftTable", "WLF", "fit_prony", "material_form", "read_creep", "read_dma",
-           "read_relaxation", "read_shift_table"]
+           "read_relaxation", "read_shift_table",
+           # raw isotherms, time-domain data, FE cards, the measured window (part 2)
+           "Superposition", "Sweeps", "TimeData", "TimeFitReport", "WLFFit", "card_form",
+           "fit_time_data", "fit_wlf", "read_card", "read_sweeps", "read_time_data",
+           "read_window", "superpose", "write_card", "write_series", "write_sweeps"]

@@ -82,7 +82,12 @@ def card_form(path):
         lines = _text_lines(path, "material", ())
     except ValueError:
         return None
-    text = "\n".join(line.upper() for _, line in lines[:400])
+    return lines_form([line for _, line in lines])
+
+
+def lines_form(lines):
+    """Which of `FORMS` the text lines hold (their keywords), or None."""
+    text = "\n".join(line.upper() for line in lines[:400])
     if "TB,PRON" in text.replace(" ", ""):
         return "ansys"
     if "*VISCOELASTIC" in text.replace(" ", ""):

@@ -25,7 +25,7 @@ from ._temperature import ShiftTable
 from ._units import PASCALS
 
 #: the forms of a material file `material_form` tells apart
-FORMS = ("creep", "relaxation", "dma")
+FORMS = ("creep", "relaxation", "dma", "sweeps", "time", "card")
 
 
 def _split(line: str) -> list[str]:
@@ -533,7 +533,10 @@ def material_form(path, *, data: bytes | None = None) -> str:
 
     * ``"creep"``: ``J0 <value>`` (a creep-series file, `read_creep`, ``bem.read_prony``);
     * ``"relaxation"``: ``E_r <value>`` (a relaxation-series file, `read_relaxation`);
-    * ``"dma"``: a table whose header names frequency, storage and loss columns (`read_dma`).
+    * ``"dma"``: a table whose header names frequency, storage and loss columns (`read_dma`);
+    * ``"sweeps"``: such a table with a temperature column too (raw isotherms, `read_sweeps`);
+    * ``"time"``: a header naming a time column and E(t) or J(t) (`read_time_data`);
+    * ``"card"``: an FE Prony card or a pyvisco table (`read_card`; ``card_form`` says which).
 
     ``data``: the file's bytes when the caller has read them (the file is then not opened).
 
@@ -546,13 +549,26 @@ def material_form(path, *, data: bytes | None = None) -> str:
     where = str(path)
     rows = _text.lines(_text.read_text(path, "material", data))
     accepted = ("a creep series (first line 'J0 <value>'), a relaxation series (first line "
-                "'E_r <value>') or a DMA master curve (a table whose header names frequency, "
-                "storage, loss)")
+                "'E_r <value>'), an FE Prony card, E(t) or J(t) (time, E or J) or a DMA master "
+                "curve (a table whose header names frequency, storage, loss; with temperature: "
+                "raw isotherms)")
     if not rows:
         raise bad("material", where, f"{accepted} (this file is empty or only comments)")
     number, line = rows[0]
     tokens = line.replace(",", " ").split()
     key = tokens[0].lower()
+    # the newer forms' modules read tables with this module's helpers: imported here, not at
+    # the top, so that the import graph has no cycle
+    from ._cards import lines_form
+    from ._sweeps import sweeps_header
+    from ._timedata import time_header
+    if lines_form([text for _, text in rows]) is not None:
+        return "card"
+    fields = _text.split(line, _text.separator(line))
+    if sweeps_header(fields) is not None:
+        return "sweeps"
+    if time_header(fields) is not None:
+        return "time"
     if key == "j0":
         return "creep"
     if key in ("e_r", "er"):

@@ -56,7 +56,7 @@ class TimeData:
     @property
     def window(self):
         """``(1/t_max, 1/t_min)``: the frequencies the data measure, rad/s."""
-        return 1.0 / float(self.t[-1]), 1.0 / float(self.t[0])
+        return 1.0 / float(self.t[-1]), 1.0 / float(self.t[0])  # noqa: E501
 
 
 @dataclass(frozen=True)
@@ -203,7 +203,7 @@ def fit_time_data(data: TimeData, *, per_decade: float = 2.0, extend: float = 1.
         model = Maxwell.from_creep(j0, tuple(jk.tolist()), tuple(tk.tolist()))
         fitted = coef[0] + ((1.0 - np.exp(-np.outer(t, 1.0 / tk))) @ jk if jk.size else 0.0)
     r = fitted / y - 1.0
-    report = TimeFitReport((1.0 / t[-1], 1.0 / t[0]), data.kind, per_decade, count,
+    report = TimeFitReport((1.0 / float(t[-1]), 1.0 / float(t[0])), data.kind, per_decade, count,
                            int(keep.sum()), float(np.sqrt(np.mean(r * r))),
                            float(np.max(np.abs(r))), data.source, data.modulus_unit,
                            int(t.size), _time.perf_counter() - t0)
