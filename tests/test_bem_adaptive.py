@@ -390,11 +390,10 @@ def test_a_gap_at_round_off_gives_no_estimate():
     1.4e-7): below MIN_GAP_DEPTH times that round-off the estimate is not trusted, where the
     gaps are differences (the primal step); the gap step's are solved for: no such rule."""
     from bem._estimate import MIN_GAP_DEPTH, _estimate, _level_scalars
-    exact = _near_full_contact_state(4096)[0]
-    assert _level_scalars(exact, *_near_full_contact_state(4096)[1:4], 1.0, 1.0)[
-        "gap_depth"] is None
+    res, grid, profile, material, _ = _near_full_contact_state(4096)
+    assert _level_scalars(res, grid, profile, material, 1.0, 1.0)["gap_depth"] is None
     scalars = []
-    for n in (1024, 2048, 4096):
+    for n in (2048, 4096, 8192):  # the gap spans 13 panels and more (at least 8 are needed)
         res, grid, profile, material, load = _near_full_contact_state(n, gap_step=False)
         scalars.append((n, _level_scalars(res, grid, profile, material, 1.0, 1.0)))
     assert scalars[-1][1]["gap_depth"] > 1e3 * MIN_GAP_DEPTH  # 1e-4 below: gaps of 1e-7 h
