@@ -28,6 +28,9 @@ Written into ``--out`` (default ``./mastercurve``):
   and solves the rest);
 * ``mastercurve.json``: the parameters (with the material's file, SHA-256, fit residuals) and
   every point, when the run ends;
+* ``shifts.png`` (raw isotherms as the material, moved by the WLF fitted to them): their
+  shifts with their errors, the WLF and the range where it holds; the shift table is printed on
+  standard error;
 * ``mastercurve.png``: μ against log V, one curve per temperature, and μ against the reduced
   speed a_T V (hollow markers: the modulus was extrapolated beyond the DMA window).
 
@@ -387,6 +390,21 @@ def _append(path, row):
 
 
 # ------------------------------------------------------------------------------ into a folder
+def _isotherms_report(out, material_info):
+    """Raw isotherms: their shift table on standard error and ``shifts.png`` into ``out``."""
+    sp = material_info.get("superposition")
+    if sp is None:
+        return
+    from viscosine import materials as vm
+
+    from .plots.superposition import shifts_figure
+    for line in vm.shift_table_text(sp).splitlines():
+        stderr(f"mastercurve: {line}")
+    path = shifts_figure(os.path.join(out, "shifts.png"), sp,
+                         title=os.path.basename(material_info.get("path") or ""))
+    stderr(f"mastercurve: wrote {path}")
+
+
 def _raw_isotherms(material) -> bool:
     """Whether ``material`` is a file of raw isotherms (which carry their own shift)."""
     from viscosine import materials as vm
@@ -458,6 +476,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
         write_text(csv_path, "".join(f"# {ln}\n" for ln in (
             "viscosine mastercurve points (python -m comparisons mastercurve)", line, UNITS))
             + ",".join(COLUMNS) + "\n")
+    _isotherms_report(out, parameters["material"])
     t0 = time.monotonic()
     failed = 0
     progress = Progress()

@@ -144,3 +144,21 @@ def test_time_data_refusals(tmp_path):
                     encoding="utf-8")
     with pytest.raises(ValueError, match="relaxed modulus"):
         fit_time_data(read_time_data(path))
+
+
+def test_pyvisco_tables_as_pyvisco_wrote_them():
+    """The Prony tables pyvisco 2.1.3 wrote (comparisons/data/materials_peers): E_0 and
+    E_i = E_0 alpha_i as on the file, E_r = E_0 (1 - sum alpha_i)."""
+    from pathlib import Path
+    folder = Path(__file__).resolve().parents[1] / "comparisons" / "data" / "materials_peers"
+    path = folder / "user-master.pyvisco-opt.csv"
+    assert card_form(path) == "pyvisco"
+    m = read_card(path)
+    rows = [ln.split(",") for ln in path.read_text().splitlines()
+            if ln and ln[0].isdigit()]
+    assert len(m.E) == len(rows) == 19
+    e0 = float(rows[0][3])
+    assert m.glassy == pytest.approx(e0, rel=1e-14)
+    by_tau = dict(zip(m.theta, m.E))
+    for r in rows:
+        assert by_tau[float(r[1])] == pytest.approx(float(r[4]), rel=1e-14)

@@ -102,7 +102,8 @@ def test_refusal_in_the_users_numbers(tmp_path, capsys):
     assert m.info["terms"] == 27
 
 
-def test_point_on_isotherms_from_the_command_line(sweeps, capsys):
+def test_point_on_isotherms_from_the_command_line(sweeps, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)              # point writes the fit figure beside the command
     assert main(["point", "--solver", "bem", "--load", "0.3", "--speed", "1", "--nodes", "4096",
                  "--material", sweeps, "--temperature", "30"]) == 0
     rec = json.loads(capsys.readouterr().out)
@@ -110,3 +111,4 @@ def test_point_on_isotherms_from_the_command_line(sweeps, capsys):
     assert mat["form"] == "sweeps" and mat["temperature"] == 30.0
     assert mat["superposition"]["wlf"]["holds"] == [-30.0, 60.0]
     assert mat["fit"]["max_residual"] < 0.01 and mat["sha256"]
+    assert (tmp_path / "isotherms_fit.png").is_file()

@@ -74,7 +74,15 @@ def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
                  if ln.startswith(("    bonded ", "    frictionless ", "    half-space "))]
     promised += [ln[4:] for ln in text.splitlines() if ln.startswith("    θ = ")]  # a surface
     out = printed.getvalue().splitlines()
-    assert len(promised) == 30 and all(p in out for p in promised), (promised, out)
+    assert len(promised) == 31 and all(p in out for p in promised), (promised, out)
+    # raw isotherms to the friction master curve: the shift figure, the curve and its record
+    for name in ("sbr/shifts.png", "sbr/mastercurve.png"):
+        assert (tmp_path / name).stat().st_size > 10_000, name
+    run = json.loads((tmp_path / "sbr" / "mastercurve.json").read_text())
+    assert len(run["points"]) == 12 and all(p["success"] for p in run["points"])
+    mu = {(p["temperature"], p["speed"]): p for p in run["points"]}
+    assert f"μ = {mu[(40.0, 1e-6)]['mu']:.4f}" in text and mu[(40.0, 1e-6)]["extrapolated"]
+    assert sum(p["extrapolated"] for p in run["points"]) == 1
     sls = [json.loads(ln) for ln in (tmp_path / "sls.jsonl").read_text().splitlines()]
     assert f'"mu": {sls[0]["mu"]!r}' in text and sls[0]["speed"] == 0.01
     # what the text says: the BEM's circles sit on the semi-analytic curve

@@ -10,7 +10,9 @@ order.  `--honesty` (`trust`), `--materials` (`materials`) and `--accepted` (`ac
 the studies of the BEM's error estimates, of broad Prony spectra and of the semi-analytic road
 over its accepted inputs; `--near-transition` (`near_transition`) the BEM just below the
 full-contact load through the command line; `--materials-peers` (`materials_peers`) the DMA fit
-against pyvisco's and ANSYS's on pyvisco's example master curves; `--surfaces` (`surfaces`) the cost of the surface BEM beside
+against pyvisco's and ANSYS's on pyvisco's example master curves; `--materials-fits`
+(`materials_fits`) the readers and fits of raw isotherms, E(t)/J(t), FE cards and measured DMA
+curves against the truth they were made from; `--surfaces` (`surfaces`) the cost of the surface BEM beside
 Tamaas's elastic solver and its adaptive default.  Every table says how loaded the machine was (load average).
 """
 from __future__ import annotations
@@ -133,6 +135,9 @@ def run(args):
     applied here; returns the exit status."""
     if args.cluster:
         return cluster_sweep(2000 if args.points is None else args.points)
+    if args.materials_fits:
+        from . import materials_fits
+        return materials_fits.run()
     if args.materials_peers:
         from . import materials_peers
         return materials_peers.run()

@@ -22,6 +22,10 @@ def add_parser(sub):
                         "through `point --solver bem --prony`, against the Fourier reference "
                         "(analytic.fourier_solve), with the standard linear solid's cost "
                         "(default 200 points)")
+    g.add_argument("--materials-fits", action="store_true",
+                   help="the material readers and fits over the realistic test set (raw "
+                        "isotherms, E(t)/J(t), FE cards, measured DMA curves) against the truth "
+                        "they were made from: accepted, residuals, truth errors, seconds per fit")
     g.add_argument("--materials-peers", action="store_true",
                    help="the DMA Prony fit (defaults) against pyvisco's and ANSYS's fits on "
                         "pyvisco's example master curves: E', E'', tan δ residuals, per decade")
@@ -87,8 +91,10 @@ def run(args):
             raise BadInput(f"--max-log2n is not allowed with --{study.replace('_', '-')}: it "
                            "sets the BEM tables")
     for name in ("points", "max_log2n"):
-        if args.materials_peers and getattr(args, name) is not None:
-            raise BadInput(f"--{name.replace('_', '-')} {getattr(args, name)} is not allowed "
-                           "with --materials-peers: it fits the shipped curves, all of them")
+        for study in ("materials_peers", "materials_fits"):
+            if getattr(args, study) and getattr(args, name) is not None:
+                raise BadInput(f"--{name.replace('_', '-')} {getattr(args, name)} is not "
+                               f"allowed with --{study.replace('_', '-')}: it fits its whole "
+                               "set of curves")
     from .. import bench
     return bench.run(args)

@@ -125,26 +125,8 @@ class Superposition:
     notes: tuple = field(default=())
 
     def table(self) -> str:
-        """The shift table and the WLF fit as lines of text."""
-        u = self.temperature_unit or ""
-        w = self.wlf
-        lines = [f"reference temperature {self.reference_temperature:g} {u}; horizontal shifts "
-                 f"from {self.method}, vertical {self.vertical or 'none'}",
-                 f"T [{u}]  log10 a_T  ± error  log10 b_T  points  overlap rms  WLF residual"]
-        for s, r in zip(self.shifts, w.residuals):
-            ov = "-" if s["overlap_rms"] is None else f"{s['overlap_rms']:.4f}"
-            lines.append(f"{s['temperature']:8.3g}  {s['log10_aT']:+9.4f}  "
-                         f"{s['log10_aT_error']:7.4f}  {s['log10_bT']:+9.4f}  "
-                         f"{s['points']:6d}  {ov:>11s}  {r:+.4f}")
-        lines.append(f"WLF: C1 = {w.wlf.C1:.4g} ± {w.C1_error:.2g}, C2 = {w.wlf.C2:.4g} ± "
-                     f"{w.C2_error:.2g} {u}, T_ref = {w.wlf.T_ref:g} {u}; residual RMS "
-                     f"{w.rms:.3g}, max {w.max:.3g} decades; holds over {w.holds[0]:g} … "
-                     f"{w.holds[1]:g} {u}")
-        if self.arrhenius is not None:
-            a = self.arrhenius
-            lines.append(f"Arrhenius below: Ea = {a.activation_energy / 1e3:.4g} kJ/mol over "
-                         f"{a.range[0]:g} … {a.range[1]:g} {u} (residual RMS {a.rms:.3g})")
-        return "\n".join(lines)
+        """The shift table and the WLF fit as lines of text (`shift_table_text`)."""
+        return shift_table_text(self.as_dict())
 
     def as_dict(self) -> dict:
         """JSON-ready: the shift table, WLF (constants, errors, residuals, range), Arrhenius."""
@@ -161,6 +143,30 @@ class Superposition:
             out["arrhenius"] = {"activation_energy": a.activation_energy, "A": a.A, "B": a.B,
                                 "rms": a.rms, "range": list(a.range)}
         return out
+
+
+def shift_table_text(d) -> str:
+    """`Superposition.as_dict` (or a record's ``superposition``) as lines of text: the shift
+    table, the WLF fit with its errors, residual and range, Arrhenius below."""
+    u = d.get("temperature_unit") or ""
+    w = d["wlf"]
+    lines = [f"reference temperature {d['reference_temperature']:g} {u}; horizontal shifts "
+             f"from {d['method']}, vertical {d['vertical'] or 'none'}",
+             f"T [{u}]  log10 a_T  ± error  log10 b_T  points  overlap rms  WLF residual"]
+    for s, r in zip(d["shifts"], w["residuals"]):
+        ov = "-" if s["overlap_rms"] is None else f"{s['overlap_rms']:.4f}"
+        lines.append(f"{s['temperature']:8.3g}  {s['log10_aT']:+9.4f}  "
+                     f"{s['log10_aT_error']:7.4f}  {s['log10_bT']:+9.4f}  "
+                     f"{s['points']:6d}  {ov:>11s}  {r:+.4f}")
+    lines.append(f"WLF: C1 = {w['C1']:.4g} ± {w['C1_error']:.2g}, C2 = {w['C2']:.4g} ± "
+                 f"{w['C2_error']:.2g} {u}, T_ref = {w['T_ref']:g} {u}; residual RMS "
+                 f"{w['rms']:.3g}, max {w['max']:.3g} decades; holds over {w['holds'][0]:g} … "
+                 f"{w['holds'][1]:g} {u}")
+    a = d.get("arrhenius")
+    if a is not None:
+        lines.append(f"Arrhenius below: Ea = {a['activation_energy'] / 1e3:.4g} kJ/mol over "
+                     f"{a['range'][0]:g} … {a['range'][1]:g} {u} (residual RMS {a['rms']:.3g})")
+    return "\n".join(lines)
 
 
 def _features(iso, log_b, method):
@@ -229,10 +235,12 @@ def _pair(a, b, fitted_vertical):
     best = minimize_scalar(cost, bounds=(a_, b_), method="bounded",
                            options={"xatol": 1e-6})
     d = float(best.x) if best.fun <= costs[j] else float(grid[j])
-    if min(d - lo, hi - d) < SEARCH_STEP:
-        return "edge"                 # the best overlay is the smallest overlap allowed
+    if not all(math.isfinite(cost(d + k * 2.0 * SEARCH_STEP)) for k in (-1, 1)):
+        return "edge"                 # the best overlay is at the least overlap allowed
     r, s, dec = _overlap(a, b, d, slopes=True)
     v = float(np.mean(r)) if fitted_vertical else 0.0
+    if fitted_vertical:               # d and v fitted together: only the slopes' spread tells d
+        s = s - float(np.mean(s))
     ms = float(np.mean((r - v) ** 2))
     # each datum enters twice (against the other curve's interpolant and as a node of that
     # interpolant) and neighbouring residuals share nodes: SIGMA_FACTOR widens the independent-
