@@ -166,8 +166,10 @@ def solver_options(p, several):
                         "('J0 <value>' then 'J_i tau_i', creep times), a relaxation series "
                         "('E_r <value>' then 'E_i theta_i', relaxation times) or a DMA master "
                         "curve (CSV header frequency, storage, loss; fitted with a Prony series, "
-                        "E_ref its relaxed modulus, tau_ref 1 s); docs/materials.md.  Not with "
-                        "--prony or --ratio")
+                        "E_ref its relaxed modulus, tau_ref 1 s); also raw isotherms (a "
+                        "temperature column too: superposed at --temperature), E(t)/J(t) tables "
+                        "and FE Prony cards (ANSYS, Abaqus, LS-DYNA, pyvisco); docs/materials.md."
+                        "  Not with --prony or --ratio")
     p.add_argument("--max-residual", type=number, action=Once, metavar="B",
                    help="DMA --material: the largest relative residual on E' or E'' the Prony "
                         "fit may leave (default 0.05), else refused")

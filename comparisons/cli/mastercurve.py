@@ -19,8 +19,10 @@ def add_parser(sub):
                                    "units; see docs/materials.md.")
     mat = p.add_argument_group("the material (SI): a file, or the standard linear solid")
     mat.add_argument("--material", action=Once, metavar="FILE",
-                     help="a creep or relaxation series (Pa, s) or a DMA master curve (CSV, its "
-                          "header naming the modulus unit), at the shift's reference temperature")
+                     help="a creep or relaxation series (Pa, s), a DMA master curve (CSV, its "
+                          "header naming the modulus unit), at the shift's reference temperature, "
+                          "E(t)/J(t), an FE Prony card, or raw isotherms (a temperature column "
+                          "too: moved to --temperatures by the WLF fitted to them; no --wlf)")
     for option, unit, what in (("--E0", "Pa", "relaxed modulus of the standard linear solid"),
                                ("--Einf", "Pa", "instantaneous modulus E∞ > E0"),
                                ("--tau-creep", "s", "creep (retardation) time τ of eq. 2.3"),
