@@ -268,7 +268,8 @@ def solve(plan, parameters, *, done=None, on_point=None) -> FrictionMasterCurve:
 
 
 def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength, amplitude, nu,
-            nodes=None, rtol=DEFAULT_RTOL, max_residual=None, per_decade=None, shift_info=None):
+            nodes=None, rtol=DEFAULT_RTOL, max_residual=None, per_decade=None, shift_info=None,
+            reference_temperature=None):
     """Every input checked and every point's spec built, before any solve.
 
     Returns ``([(T, V, log10 a_T, spec), ...], parameters)``; raises ValueError (one line).
@@ -299,12 +300,20 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                       {"kind": "table", "T": [shift.T[0], shift.T[-1]]})
     if isinstance(material, (str, os.PathLike)):
         base = _materials.read(os.fspath(material), max_residual=max_residual,
-                               per_decade=per_decade, si=True)
+                               per_decade=per_decade, si=True,
+                               reference_temperature=reference_temperature)
     else:
         if max_residual is not None or per_decade is not None:
             raise ValueError("max_residual, per_decade are not allowed with a Maxwell series: "
                              "they set the fit of a DMA file")
         base = _materials.from_model(material)
+    if reference_temperature is not None and base.info["form"] != "sweeps":
+        raise ValueError(f"--reference-temperature {reference_temperature!r} is not allowed: "
+                         "it sets the master curve of raw isotherms, and the material is a "
+                         f"{base.info['form']} file")
+    if base.info["form"] == "sweeps" and shift is not None:
+        raise ValueError("--wlf is not allowed with raw isotherms: they are moved by the WLF "
+                         "fitted to them (their master curve is at their own T_ref)")
     if shift is None:                         # raw isotherms: the WLF fitted to their shifts
         shift, shift_info = _materials.fitted_shift(base)
         if shift is None:
@@ -418,7 +427,7 @@ def _raw_isotherms(material) -> bool:
 
 def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, speeds,
                 mean_pressure, wavelength, amplitude, nu, nodes=None, rtol=None,
-                max_residual=None, per_decade=None) -> int:
+                max_residual=None, per_decade=None, reference_temperature=None) -> int:
     """`python -m comparisons mastercurve`: check every input, then solve every point into the
     folder ``out`` (made when missing): ``points.csv`` continued when it holds a run with the
     same parameters, then ``mastercurve.json`` and ``mastercurve.png``; progress on standard
@@ -454,7 +463,8 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             speeds=speeds, mean_pressure=mean_pressure, wavelength=wavelength,
             amplitude=amplitude, nu=nu, nodes=nodes,
             rtol=DEFAULT_RTOL if rtol is None else rtol,
-            max_residual=max_residual, per_decade=per_decade)
+            max_residual=max_residual, per_decade=per_decade,
+            reference_temperature=reference_temperature)
     except ValueError as exc:  # BadInput too (the runner's and file readers'), re-worded
         text = str(exc).strip().splitlines()[0]
         for name, option in (("--speed ", "--speeds "), ("speed=", "--speeds "),

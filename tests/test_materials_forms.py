@@ -112,3 +112,28 @@ def test_point_on_isotherms_from_the_command_line(sweeps, capsys, tmp_path, monk
     assert mat["superposition"]["wlf"]["holds"] == [-30.0, 60.0]
     assert mat["fit"]["max_residual"] < 0.01 and mat["sha256"]
     assert (tmp_path / "isotherms_fit.png").is_file()
+
+
+def test_mastercurve_on_isotherms(sweeps, tmp_path):
+    """mastercurve on raw isotherms: the master curve at --reference-temperature, moved by the
+    WLF fitted to them; the shift figure; --wlf and a reference for another form refused."""
+    import subprocess
+    import sys
+    out = tmp_path / "mc"
+    base = [sys.executable, "-m", "comparisons", "mastercurve", "--material", sweeps,
+            "--speeds", "1e-3", "--load", "1e5", "--wavelength", "1e-3", "--amplitude", "1e-4",
+            "--nu", "0.5", "--nodes", "1024"]
+    proc = subprocess.run(base + ["--temperatures", "0", "40", "--reference-temperature", "20",
+                                  "--out", str(out)], capture_output=True, text=True, cwd=tmp_path)
+    assert proc.returncode == 0, proc.stderr
+    assert "WLF: C1 = 8.86" in proc.stderr and (out / "shifts.png").stat().st_size > 10_000
+    run = json.loads((out / "mastercurve.json").read_text())
+    sp = run["parameters"]["material"]["superposition"]
+    assert sp["reference_temperature"] == 20.0
+    assert run["parameters"]["shift"]["kind"] == "WLF fitted to the isotherms"
+    got = [p["log10_aT"] for p in run["points"]]
+    assert got == pytest.approx([SHIFT.log10_aT(0.0), SHIFT.log10_aT(40.0)], abs=2e-3)
+    bad = subprocess.run(base + ["--temperatures", "0", "--wlf", "8.86", "101.6", "20", "--out",
+                                 str(tmp_path / "x")], capture_output=True, text=True,
+                         cwd=tmp_path)
+    assert bad.returncode == 2 and "--wlf is not allowed with raw isotherms" in bad.stderr

@@ -62,6 +62,9 @@ def add_parser(sub):
                    help="DMA: the largest relative residual of the Prony fit (default 0.05)")
     p.add_argument("--per-decade", type=number, action=Once, metavar="K",
                    help="DMA: relaxation times per decade of the fit (default 2)")
+    p.add_argument("--reference-temperature", type=number, action=Once, metavar="T0",
+                   help="raw isotherms: the temperature of their master curve and of the WLF "
+                        "fitted to them (default: the isotherm nearest mid-range)")
     p.add_argument("--out", action=Once, metavar="DIR",
                    help="output folder (default ./mastercurve); a run's points.csv there is "
                         "continued when its parameters are the same")
@@ -76,6 +79,7 @@ def run(args) -> int:
         shift_table=args.shift_table, temperatures=args.temperatures, speeds=args.speeds,
         mean_pressure=args.load, wavelength=args.wavelength, amplitude=args.amplitude,
         nu=args.nu, nodes=args.nodes, rtol=args.rtol, max_residual=args.max_residual,
+        reference_temperature=args.reference_temperature,
         per_decade=args.per_decade)
     return EXIT_FAILED if failed else EXIT_OK
 
