@@ -214,6 +214,9 @@ def _fit_info(model):
     f = model.fit
     if f is None:
         return None
+    from viscosine.materials import MeasuredWindow
+    if isinstance(f, MeasuredWindow):           # a series file's measured window only
+        return None
     if not hasattr(f, "storage_max"):          # a fit to E(t) or J(t)
         return {"kind": f.kind, "rms": f.rms, "max_residual": f.max, "terms": f.terms,
                 "candidates": f.candidates, "per_decade": f.per_decade, "points": f.points,
@@ -351,7 +354,7 @@ def from_model(model) -> Material:
         raise ValueError(f"material={model!r} is not allowed: a file name or a "
                          "viscosine.materials.Maxwell (Pa, s)")
     model = model.in_pascals()
-    form = ("relaxation" if model.fit is None else
+    form = ("relaxation" if model.fit is None or isinstance(model.fit, vm.MeasuredWindow) else
             "dma" if hasattr(model.fit, "storage_max") else "time")
     source = model.fit.source if model.fit is not None else None
     fit_info = _fit_info(model)

@@ -137,3 +137,28 @@ def test_mastercurve_on_isotherms(sweeps, tmp_path):
                                  str(tmp_path / "x")], capture_output=True, text=True,
                          cwd=tmp_path)
     assert bad.returncode == 2 and "--wlf is not allowed with raw isotherms" in bad.stderr
+
+
+def test_python_route_flags_the_window_of_a_series_file(tmp_path):
+    """A series written with its window, read in Python (read_series) and solved with
+    bem.solve_si: the probed frequencies below the window raise the warning, with its decades;
+    in the window, none."""
+    import warnings
+
+    import bem
+    model = vm.Maxwell(1e6, (2e6,), (1.0 / 3.0,))
+    path = tmp_path / "series.txt"
+    vm.write_series(path, model, window=(10.0, 1e4))
+    back = vm.read_series(path)
+    assert back == model and back.fit.window == (10.0, 1e4)
+    assert _materials.from_model(back).window == (10.0, 1e4)
+    kw = dict(nu=0.5, wavelength=1e-3, amplitude=1e-4, mean_pressure=2e5, nodes=1024)
+    with warnings.catch_warnings(record=True) as caught:   # kV = 6.3 rad/s: 0.2 decade below
+        warnings.simplefilter("always")
+        bem.solve_si(material=back, speed=1e-3, **kw)
+    texts = [str(w.message) for w in caught if issubclass(w.category, UserWarning)]
+    assert any("decade(s) below the measured window" in t for t in texts), texts
+    with warnings.catch_warnings(record=True) as caught:   # kV = 630 rad/s: inside
+        warnings.simplefilter("always")
+        bem.solve_si(material=back, speed=0.1, **kw)
+    assert not any("measured window" in str(w.message) for w in caught)

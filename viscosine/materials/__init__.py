@@ -70,14 +70,15 @@ from ._superposition import Superposition, WLFFit, fit_wlf, shift_table_text, su
 from ._sweeps import Sweeps, read_sweeps, write_sweeps
 from ._synthetic import isotherm_rows, lognormal_series, time_rows
 from ._timedata import TimeData, TimeFitReport, fit_time_data, read_time_data
-from ._window import read_window, write_series
+from ._window import MeasuredWindow, read_series, read_window, write_series
 
 __all__ = ["Creep", "FORMS", "FitReport", "MERGE_RTOL", "MIN_POINTS", "MasterCurve", "Maxwell",
            "PASCALS", "ShiftTable", "WLF", "fit_prony", "material_form", "read_creep", "read_dma",
            "read_relaxation", "read_shift_table",
            # raw isotherms, time-domain data, FE cards, the measured window (part 2)
            "CARD_FORMS", "Superposition", "Sweeps", "TimeData", "TimeFitReport", "WLFFit",
-           "card_form", "isotherm_rows", "lognormal_series", "time_rows",
+           "card_form", "isotherm_rows", "lognormal_series", "time_rows", "MeasuredWindow",
+           "read_series",
            "fit_time_data", "fit_wlf", "read_card", "read_sweeps", "read_time_data",
            "read_window", "shift_table_text", "superpose", "write_card", "write_series",
            "write_sweeps"]

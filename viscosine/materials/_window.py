@@ -10,13 +10,16 @@ header comment both readers skip::
     ...
 
 `read_window` finds that line in any material file: ``(w_lo, w_hi)`` in rad per time unit of
-the file, or None.
+the file, or None.  `read_series` reads a relaxation or creep series file into a `Maxwell` whose
+``fit`` is a `MeasuredWindow` when the file has the line, so that the Python route
+(``bem.solve_si(material=...)``) warns as the command line does.
 """
 from __future__ import annotations
 
 import hashlib
 import math
 import re
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 from ..checks import bad
@@ -26,6 +29,36 @@ from ._series import Maxwell
 PREFIX = "# measured window:"
 _PATTERN = re.compile(r"^\s*#\s*measured window:\s*([^\s,]+)[\s,]+([^\s,]+)\s*rad/s",
                       re.IGNORECASE)
+
+
+@dataclass(frozen=True)
+class MeasuredWindow:
+    """The measured window a series file carried: what `Maxwell.extrapolation_warning` needs,
+    and no fit report (the file holds the series, not the data).
+
+    ``modulus_unit`` is "Pa": a series file's moduli are in pascals on the SI route by its
+    convention (`Maxwell.in_pascals` leaves them as they are).
+    """
+
+    window: tuple
+    source: str | None = None
+    modulus_unit: str | None = "Pa"
+
+
+def read_series(path) -> Maxwell:
+    """A relaxation (``E_r`` first) or creep (``J0`` first, converted exactly) series file,
+    with its measured window (`MeasuredWindow`) when it has a ``# measured window`` line."""
+    from ._files import material_form, read_creep, read_relaxation
+    data = Path(path).read_bytes()
+    form = material_form(path, data=data)
+    if form == "relaxation":
+        model = read_relaxation(path, data=data)
+    elif form == "creep":
+        model = Maxwell.from_creep(*read_creep(path, option="series", data=data))
+    else:
+        raise bad("series", str(path), f"a relaxation or creep series file (this is {form})")
+    window = read_window(path, data)
+    return model if window is None else replace(model, fit=MeasuredWindow(window, str(path)))
 
 
 def read_window(path, data: bytes | None = None):
