@@ -153,7 +153,7 @@ def test_extrapolation_is_warned_outside_the_window_and_not_inside(dma, capsys):
     assert inside["material"]["fit"]["max_residual"] < 1e-6   # the spectrum is on the grid
     assert inside["material"]["fit"]["window"] == [OMEGA[0], OMEGA[-1]]
     assert not any("extrapolation" in w for w in inside["warnings"])
-    assert "extrapolation" not in err
+    assert not [ln for ln in err.splitlines() if "warning: extrapolation" in ln]
     for speed, side in (("1e-4", "below"), ("1000", "above")):
         rec, err = _point(capsys, *base, "--speed", speed)
         warned = [w for w in rec["warnings"] if w.startswith("extrapolation:")]
@@ -277,8 +277,9 @@ def test_mastercurve_end_to_end_writes_each_point_and_resumes(dma, tmp_path):
     proc = _cli(*args, cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert proc.stdout == ""
+    # a run this short prints its summary only (the progress line is throttled)
     progress = [ln for ln in proc.stderr.splitlines() if ln.startswith("mastercurve: ")]
-    assert len(progress) == 5 and "4/4 T = 60, V = 0.01 m/s: mu = " in progress[3]
+    assert len(progress) == 1 and progress[0].startswith("mastercurve: 4/4 points in ")
     assert sorted(p.name for p in out.iterdir()) == ["mastercurve.json", "mastercurve.png",
                                                      "points.csv"]
     doc = json.loads((out / "mastercurve.json").read_text())
