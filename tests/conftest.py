@@ -11,3 +11,32 @@ next to that measurement in the BEM and cross-solver tests.
 ROUNDOFF = 1e-12
 QUADRATURE = 1e-10
 LIMIT = 1e-9
+
+
+# ---------------------------------------------------------------------------- the slow studies
+def pytest_addoption(parser):
+    parser.addoption("--slow", action="store_true",
+                     help="also run the tests marked slow (the long studies; CI runs them)")
+
+
+def _named(item, config):
+    """The test was named by its node id on the command line (`file.py::test[...]`)."""
+    tail = item.nodeid.split("::", 1)[-1]
+    return any("::" in a and tail.startswith(a.split("::", 1)[1]) for a in config.args)
+
+
+def pytest_collection_modifyitems(config, items):
+    """Leave out the tests marked slow unless --slow is given, a -m expression chooses the
+    tests, or the test is named by its node id."""
+    if config.getoption("--slow") or config.option.markexpr:
+        return
+    slow = [i for i in items if i.get_closest_marker("slow") and not _named(i, config)]
+    if slow:
+        config.hook.pytest_deselected(items=slow)
+        left_out = set(slow)
+        items[:] = [i for i in items if i not in left_out]
+
+
+def pytest_report_header(config):
+    if not (config.getoption("--slow") or config.option.markexpr):
+        return "slow tests: left out (run them with --slow, as CI does)"
