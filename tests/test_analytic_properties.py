@@ -85,6 +85,7 @@ def _assert_consistent(sol):
         assert val < tol, (key, val)
 
 
+@pytest.mark.slow  # about 20 s (the cheap half below runs by default)
 @_settings(60)
 @given(control=CONTROLS, speed=SPEEDS, ratio=RATIOS, hk=HKS)
 def test_every_accepted_point_is_a_consistent_answer(control, speed, ratio, hk):

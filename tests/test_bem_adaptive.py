@@ -229,6 +229,7 @@ def test_stiff_material_at_low_speed_is_answered(kw):
         assert err <= 3 * r.error_estimate[key], (key, err, r.error_estimate[key])
 
 
+@pytest.mark.slow  # about 50 s: 2^22 panels
 def test_cycle_at_round_off_is_judged_by_the_validity_gate():
     """E_inf/E0 995 at V/V0 3e-4 on 2^22 panels: the trailing-edge panels flip between a
     pressure of -1e-2 of the maximum (active) and a gap of -1e-12 h (free), and the active set

@@ -111,6 +111,7 @@ def test_shifted_coefficients_against_quadrature(frac):
         assert abs(coef[m] - ref) <= 1e-13 * abs(ref), m
 
 
+@pytest.mark.slow  # about 15 s
 def test_stiff_slow_contact_has_no_sawtooth(monkeypatch):
     """E_inf/E0 ~ 600 at low speed: with the shift one patch, a monotone pressure except at
     the last few panels, and a handful of active-set steps; centred collocation (shift off)

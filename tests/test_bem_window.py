@@ -176,7 +176,8 @@ def test_panel_values_stay_finite_on_the_finest_window_grids():
 
 
 @pytest.mark.parametrize("kw", [dict(load=1e-8, speed=0.0), dict(load=1e-8, speed=1e30),
-                                dict(load=1e-8, speed=1.0, ratio=1e4)],
+                                pytest.param(dict(load=1e-8, speed=1.0, ratio=1e4),
+                                             marks=pytest.mark.slow)],  # about 25 s
                          ids=["at-rest", "speed-1e30", "ratio-1e4"])
 def test_windows_at_the_ends_of_the_accepted_speeds_and_ratios(kw):
     ref = analytic.solve(**kw)
@@ -203,6 +204,7 @@ def test_a_prony_window_agrees_with_the_periodic_grids(monkeypatch):
             w.error_estimate[key] + p.error_estimate[key]
 
 
+@pytest.mark.slow  # about 15 s
 def test_a_memory_far_below_every_panel_is_in_the_estimate_not_a_refusal():
     """V/V0 = 1e-30: the memory length (1.6e-31 λ) is below a panel of any grid; its edge shift,
     π L (1 − 1/ρ) ≈ 3.3e-31, is corrected by the edge fits' memory lag, the share of it that the

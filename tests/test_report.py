@@ -111,6 +111,7 @@ def test_quick_report_agreement_is_within_the_measured_tolerances(quick_report):
     assert pen < 2e-6 and mu < 1.5e-5 and ka < 6e-4 and ke < 6e-4 and keh < 2.5e-6
 
 
+@pytest.mark.slow  # about 15 s: the report rebuilt whole
 def test_resume_recomputes_only_what_is_missing(quick_report):
     out, _ = quick_report
     results = out / "results"
