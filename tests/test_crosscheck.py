@@ -7,6 +7,7 @@ margin), printed by `python -m comparisons crosscheck --tolerances`.  Each is 3�
 difference measured over the grid with the BEM mesh pinned to N, rounded up to two digits, so a
 reader who copies the printed tolerance never fails at a grid point.
 """
+import functools
 import re
 import subprocess
 import sys
@@ -18,8 +19,14 @@ from comparisons.crosscheck import TOLERANCES
 from comparisons.report import fit_order
 
 
+@functools.lru_cache(maxsize=None)
+def _differences(nodes):
+    """The grid's rows at one mesh, solved once for the agreement and the orders tests."""
+    return crosscheck.differences(nodes)
+
+
 def _check(nodes):
-    rows = crosscheck.differences(nodes)
+    rows = _differences(nodes)
     for label, spec, ref, rec, diff in rows:
         assert spec["nodes"] == nodes  # the mesh is pinned, never the BEM's adaptive default
         assert rec is not None, f"BEM did not converge at {label}"
@@ -73,7 +80,7 @@ def test_two_roads_agree_on_the_grid_within_the_tolerances(nodes):
 def test_observed_orders_of_the_worst_difference_over_the_grid():
     """About N⁻² for Δ, μ, kê and the edges (sub-panel fit with its discretisation tail)."""
     Ns = [1024, 4096, 16384, 65536]
-    worst = [crosscheck.worst(crosscheck.differences(n)) for n in Ns]
+    worst = [crosscheck.worst(_differences(n)) for n in Ns]
     order = {k: fit_order(Ns, [w[k] for w in worst]) for k in ("penetration", "mu", "ka", "ke", "ke_hat")}
     # measured 1.78, 1.93, 2.06, 2.06, 2.19 (ka, ke with a plain polynomial edge fit: 1.68, 1.73)
     assert order["penetration"] > 1.6 and order["mu"] > 1.7 and order["ke_hat"] > 1.9
