@@ -488,11 +488,12 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             + ",".join(COLUMNS) + "\n")
     _isotherms_report(out, parameters["material"])
     t0 = time.monotonic()
-    failed = 0
+    failed = reused_rows = 0
     progress = Progress()
 
     def on_point(row, i, total, reused):
-        nonlocal failed
+        nonlocal failed, reused_rows
+        reused_rows += bool(reused)
         if not reused:
             _append(csv_path, row)
         failed += not row["success"]
@@ -515,7 +516,8 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
                json.dumps(jsonable(doc), indent=1, allow_nan=False) + "\n")
     if table.success.any():
         figure.write_figure(os.path.join(out, "mastercurve.png"), table)
-    stderr(f"mastercurve: {total - failed}/{total} points in {time.monotonic() - t0:.1f} s; "
+    kept = f" ({reused_rows} from points.csv)" if reused_rows else ""
+    stderr(f"mastercurve: {total - failed}/{total} points{kept} in {time.monotonic() - t0:.1f} s; "
            f"wrote {csv_path}, mastercurve.json" + (", mastercurve.png"
                                                     if table.success.any() else ""))
     if failed:
