@@ -58,7 +58,9 @@ def _prony_text(point) -> str:
         if info.get("fit"):
             f = info["fit"]
             lines.append(f"# DMA fit: {f['per_decade']:g} relaxation times per decade, largest "
-                         f"relative residual {f['max_residual']:.3g} (bound {f['bound']:g}), "
+                         f"relative residual {f['max_residual']:.3g}"
+                         + (f" (bound {f['bound']:g})" if f.get("bound") is not None else "")
+                         + ", "
                          f"measured window {f['window'][0]:.4g}..{f['window'][1]:.4g} rad/s"
                          + (" (shifted to the temperature below)"
                             if info.get("temperature") is not None else ""))
