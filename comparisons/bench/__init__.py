@@ -161,7 +161,8 @@ def run(args):
     if args.near_transition:
         from . import near_transition
         return near_transition.run(100 if args.points is None else args.points,
-                                   near_transition.SEED if args.seed is None else args.seed)
+                                   near_transition.SEED if args.seed is None else args.seed,
+                                   workers=1 if args.workers is None else args.workers)
     if args.accepted:
         from . import accepted
         return accepted.measure(1000 if args.points is None else args.points,

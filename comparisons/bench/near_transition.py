@@ -141,8 +141,8 @@ def judge(point, record):
         e = abs(a - b) / abs(b) if key in JUDGED else abs(a - b)
         errors[key] = e
         s = est.get(key)
-        if s is not None:
-            ratios[key] = e / s if s > 0 else (0.0 if e == 0 else math.inf)
+        if s is not None:  # an error over an estimate of 0: None (JSON has no inf)
+            ratios[key] = e / s if s > 0 else (0.0 if e == 0 else None)
         if key in JUDGED and not (s is not None and e <= SAFETY * s + FLOOR):
             right = False
     return {"reference": True, "errors": errors, "over_estimate": ratios, "right": right}
@@ -173,15 +173,31 @@ def _line(row):
     rec, j = row["record"], row["judged"]
     if not j.get("reference"):
         return f"{head} answered, N = {rec['nodes']} | no reference | |"
-    worst = max(j["over_estimate"].get(k, math.inf) for k in JUDGED)
+    worst = max(math.inf if j["over_estimate"].get(k) is None else j["over_estimate"][k]
+                for k in JUDGED)
     errs = ", ".join(f"{k} {j['errors'][k]:.1e}" for k in JUDGED + REPORTED if k in j["errors"])
     return (f"{head} {'right' if j['right'] else 'WRONG'}, N = {rec['nodes']} | "
             f"{worst:.2g} | {errs} |")
 
 
-def run(points=100, seed=SEED, path=None, limit=LIMIT, out=sys.stdout):
-    """The study: print the table and the figures; 0 when at most 1 % is refused and none is
-    wrong, else 1."""
+def _measure(point, seed, limit):
+    """One point run and judged: its JSON line's contents."""
+    _progress(f"point {point['index'] + 1}: E∞/E0 {point['ratio']:.4g}, V/V0 "
+              f"{point['speed']:.4g}, d {point['distance']:.2e}")
+    got = run_point(point, limit)
+    row = {"seed": seed, "point": point, "exit": got["exit"], "cpu": got["cpu"],
+           "wall": got["wall"], "max_rss": got["max_rss"], "record": got["record"],
+           "error": got["error"], "command": " ".join(_command(point)[1:])}
+    row["judged"] = judge(point, got["record"]) if got["record"] else None
+    return row
+
+
+def run(points=100, seed=SEED, path=None, limit=LIMIT, out=sys.stdout, workers=1):
+    """The study: print the table (rows as the points finish; ``workers`` points run at a
+    time, each in its own process, CPU and memory measured per process) and the figures; 0
+    when at most 1 % is refused and none is wrong, else 1."""
+    import concurrent.futures as cf
+    import threading
     path = path or f"bench-near-transition-S{seed}.jsonl"
     pts = sample(points, seed)
     done = _done(path, seed)
@@ -191,29 +207,33 @@ def run(points=100, seed=SEED, path=None, limit=LIMIT, out=sys.stdout):
           f"{points} points, seed {seed}: E∞/E0 log-uniform in {RATIO}, V/V0 in {SPEED}, "
           f"p̃∞ = p̃_FC(V)(1 − d) with d in {DISTANCE}; right: true error of "
           f"{', '.join(JUDGED)} ≤ {SAFETY:g} × estimate + {FLOOR:g}; limit {limit:g} s of CPU "
-          f"a point; {_load_average()}\n", file=out)
+          f"a point; {workers} at a time; {_load_average()}\n", file=out)
     print("| # | E∞/E0 | V/V0 | d | CPU [s] | peak [MiB] | verdict | worst error/estimate | "
           "true errors |", file=out)
     print("| ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: | --- |", file=out)
-    rows = []
-    with open(path, "a", encoding="utf-8") as fh:
-        for p in pts:
-            row = done.get(p["index"])
-            if row is None or row["point"] != p:
-                _progress(f"point {p['index'] + 1}/{points}: E∞/E0 {p['ratio']:.4g}, V/V0 "
-                          f"{p['speed']:.4g}, d {p['distance']:.2e}")
-                got = run_point(p, limit)
-                row = {"seed": seed, "point": p, "exit": got["exit"], "cpu": got["cpu"],
-                       "wall": got["wall"], "max_rss": got["max_rss"],
-                       "record": got["record"], "error": got["error"],
-                       "command": " ".join(_command(p)[1:])}
-                row["judged"] = judge(p, got["record"]) if got["record"] else None
+    rows = {}
+    todo = []
+    for p in pts:
+        row = done.get(p["index"])
+        if row is not None and row["point"] == p:
+            rows[p["index"]] = row
+            print(_line(row), file=out, flush=True)
+        else:
+            todo.append(p)
+    lock = threading.Lock()
+    with open(path, "a", encoding="utf-8") as fh, \
+            cf.ThreadPoolExecutor(max_workers=workers) as ex:
+        futures = [ex.submit(_measure, p, seed, limit) for p in todo]
+        for fut in cf.as_completed(futures):
+            row = fut.result()
+            with lock:
                 fh.write(json.dumps(row, allow_nan=False) + "\n")
                 fh.flush()
                 os.fsync(fh.fileno())
-            rows.append(row)
+            rows[row["point"]["index"]] = row
             print(_line(row), file=out, flush=True)
-    return _summary(rows, out)
+            _progress(f"{len(rows)}/{points} done")
+    return _summary([rows[i] for i in sorted(rows)], out)
 
 
 def _summary(rows, out):
@@ -230,7 +250,8 @@ def _summary(rows, out):
     print(f"- wrong: {len(wrong)} of {len(judged)} answered with a reference "
           f"({len(answered) - len(judged)} answered without one)", file=out)
     for key in JUDGED + REPORTED:
-        vals = [r["judged"]["over_estimate"][key] for r in judged
+        vals = [math.inf if r["judged"]["over_estimate"][key] is None else
+                r["judged"]["over_estimate"][key] for r in judged
                 if key in r["judged"]["over_estimate"]]
         if vals:
             print(f"  - {key}: worst true error / estimate {max(vals):.2g}, "

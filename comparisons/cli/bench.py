@@ -55,8 +55,9 @@ def add_parser(sub):
                    help="with --accepted: skip Solution.check(), only the constraints every "
                         "answer meets")
     p.add_argument("--workers", type=integer, action=Once, metavar="W",
-                   help="with --materials: local processes that share the points (default 1; "
-                        "the printed rows and figures do not depend on it)")
+                   help="with --materials or --near-transition: local processes that share "
+                        "the points (default 1; the rows and figures do not depend on it, but "
+                        "for the CPU times on a loaded machine)")
     p.add_argument("--max-log2n", type=integer, action=Once, metavar="K",
                    help="largest BEM mesh 2^K of the BEM speed/memory table (default 20; with "
                         "--surfaces the largest grid 2^K a side, default 12)")
@@ -79,9 +80,9 @@ def run(args):
     if args.front_door and not args.honesty:
         raise BadInput("--front-door is not allowed without --honesty: it is a mode of that "
                        "study")
-    if args.workers is not None and not args.materials:
-        raise BadInput("--workers is not allowed without --materials: it shares that study's "
-                       "points")
+    if args.workers is not None and not (args.materials or args.near_transition):
+        raise BadInput("--workers is not allowed without --materials or --near-transition: it "
+                       "shares that study's points")
     if args.workers is not None and args.workers < 1:
         raise BadInput(f"--workers {args.workers} is not allowed: an integer ≥ 1")
     if args.cheap and not args.accepted:
