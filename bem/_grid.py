@@ -437,6 +437,8 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
                        and _dual_floor(grid) <= DUAL_MAX_FLOOR * load
                        and _dual_floor(grid) <= DUAL_MAX_DEFICIT_FLOOR * deficit),
                  pfull=pfull if near else None, retreat=retreat)
+    # this grid's full-contact load (`_estimate`: is the load clear of its error?)
+    pfc = None if pfull is None else load - float(pfull.min())
     del pfull
     for it in range(1, max_outer + 1):
         if not active.any():
@@ -469,7 +471,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         gap = np.zeros(n)
     return {"sigma": sigma, "s": s, "active": active.copy(), "gap": gap, "nit": len(inner),
             "inner": inner, "relres": relres, "status": status, "message": message,
-            "exact_gaps": mode.pfull is not None}
+            "exact_gaps": mode.pfull is not None, "pfc": pfc}
 
 
 def _step(grid: _Grid, active, sigma, s, held, load, sep, mode, tol, restart, max_inner,
@@ -715,7 +717,8 @@ def _solve_one(grid, load, sep, start, tol, max_outer, restart, max_inner, elast
         s = float(grid.y.mean())
         return {"sigma": full, "s": s, "active": np.ones(n, np.bool_),
                 "gap": grid.op.apply(full) - grid.y + s, "nit": 1, "inner": [0],
-                "relres": 0.0, "status": CONVERGED, "message": MESSAGES[CONVERGED]}
+                "relres": 0.0, "status": CONVERGED, "message": MESSAGES[CONVERGED],
+                "pfc": None if sep == 0.0 or grid.window else load - float(full.min())}
     if best is None and elastic is not None:
         # no coarser grid: start from the elastic contact on this grid (a symmetric
         # positive-definite problem, on which the active-set method converges from anywhere)
