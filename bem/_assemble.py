@@ -91,9 +91,10 @@ def counted_contact(sigma, gap, active, scale):
     return out
 
 
-#: one patch whose gap spans fewer than 1/GAP_FIT_SCALE of the period (just below full
-#: contact) has its edges fitted on windows that scale with GAP_FIT_SCALE times the gap's
-#: panels instead of the period's (`fit_panels`): windows of sqrt(N)/16 .. sqrt(N)/2 panels
+#: after the gap step (just below full contact), one patch whose gap spans fewer than
+#: 1/GAP_FIT_SCALE of the period has its edges fitted on windows that scale with
+#: GAP_FIT_SCALE times the gap's panels instead of the period's (`fit_panels`; the other
+#: grids keep the period's): windows of sqrt(N)/16 .. sqrt(N)/2 panels
 #: reach across a gap of 177 panels at 2^20 (E_inf/E0 = 100, V/V0 = 24.7, 7e-8 below p_FC),
 #: where the edge asymptotics do not hold (ke 2.4e-6 off there, 2e-7 at 2^19)
 GAP_FIT_SCALE = 10
@@ -797,7 +798,7 @@ def _contact(res, grid, profile, material, speed, mean_p):
         return True, patches, 1.0, math.pi, None, patches[0].ke_hat, warnings
     # round-off slivers are not patches (`counted_contact`), as for the estimate
     counted = counted_contact(sigma, res["gap"], active, grid.scale)
-    fit = grid.n if grid.window else fit_panels(counted)
+    fit = fit_panels(counted) if res.get("exact_gaps") else grid.n  # as `_level_scalars`
     patches = tuple(_patches(sigma, res["gap"], counted, grid.x, grid.h, profile, grid.y,
                              grid.window, edge_lags(material, speed, grid.h, fit), fit))
     frac = float(sum(p.width for p in patches))

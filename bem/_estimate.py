@@ -71,8 +71,9 @@ def _level_scalars(res, grid, profile, material, speed, amp):
     # round-off slivers (a negligible share of the load across gaps at the validity gate's
     # round-off) are not counted as patches: `counted_contact`
     counted = counted_contact(sigma, res["gap"], active, grid.scale)
-    # the edge fits' windows: the period's panels, or a narrow gap's (`fit_panels`)
-    fit = grid.n if grid.window else fit_panels(counted)
+    # the edge fits' windows: the period's panels, or after the gap step a narrow gap's
+    # (`fit_panels`)
+    fit = fit_panels(counted) if res.get("exact_gaps") else grid.n
     patches = _patches(sigma, res["gap"], counted, grid.x, grid.h, profile, grid.y, grid.window,
                        edge_lags(material, speed, grid.h, fit), fit)
     res["patches"] = patches  # the next grid's start needs their edges too
