@@ -40,3 +40,14 @@ def pytest_collection_modifyitems(config, items):
 def pytest_report_header(config):
     if not (config.getoption("--slow") or config.option.markexpr):
         return "slow tests: left out (run them with --slow, as CI does)"
+
+
+# ---------------------------------------------------------------------------- the working folder
+import pytest  # noqa: E402
+
+
+@pytest.fixture(autouse=True)
+def _working_folder(tmp_path_factory, monkeypatch):
+    """Every test runs in a folder of its own: what a command writes beside itself (a DMA fit's
+    figure, a bench's JSON lines) never lands in the checkout, and no test sees another's."""
+    monkeypatch.chdir(tmp_path_factory.mktemp("cwd"))
