@@ -42,6 +42,9 @@ MAX_NODES_RETRY = 2 ** 21
 #: up to this grid the retry gets all max_outer active-set steps (from the elastic contact
 #: it may need 15-20), above it MAX_OUTER_AFTER_CONVERGED
 MAX_NODES_FULL_RETRY = 2 ** 18
+#: the coarsest grid of the ladder that starts a first grid that failed from every elastic
+#: contact (`_coarse_start`)
+LADDER_NODES = START_NODES // 8
 #: consecutive failed grids, none converged yet, after which the adaptive mesh gives up
 MAX_FAILED_FROM_SCRATCH = 5
 #: nested=False tries the full-contact start with at most these active-set steps and Krylov
@@ -337,7 +340,8 @@ def _solve_level(p: _Problem, run: _Run, grid, elastic, harmonic) -> dict:
     """One grid of the sequence with its retries: from the coarser grid's contact (nested=False:
     from the full-contact pressure, lowered until clipped at zero it carries the load); should
     that fail, from the elastic contact ``elastic`` (the first grid: then from ``harmonic``'s,
-    the elastic contact with the first harmonic's |J*|).  Returns `_solve_one`'s state."""
+    the elastic contact with the first harmonic's |J*|, then from coarser grids,
+    `_coarse_start`).  Returns `_solve_one`'s state."""
     n = grid.n
     steps = p.max_outer if run.good is None else min(p.max_outer, MAX_OUTER_AFTER_CONVERGED)
     # the coarser grid is handed over in a list that _solve_one empties, so that it is
@@ -376,7 +380,29 @@ def _solve_level(p: _Problem, run: _Run, grid, elastic, harmonic) -> dict:
                            p.max_inner, elastic=harmonic)
         if retry["status"] == CONVERGED:
             res = retry
+    if res["status"] != CONVERGED and not run.levels and p.nested and n > LADDER_NODES:
+        # still failed: a stiff edge (E_inf/E0 >= 1e4 at the loss peak) retreats by one panel
+        # per active-set step, and a start 70 panels too wide runs out of steps; coarser grids
+        # cover the distance in fewer steps, so start from the ladder below this grid
+        retry = _solve_one(grid, p.load, p.sep, [_coarse_start(p, n, harmonic)], p.tol,
+                           p.max_outer, p.restart, p.max_inner)
+        if retry["status"] == CONVERGED:
+            res = retry
     return res
+
+
+def _coarse_start(p: _Problem, n: int, harmonic):
+    """(res, grid) of the grid n/2, solved nested from LADDER_NODES up (the coarsest from
+    ``harmonic``'s elastic contact): the first grid's last start.  E_inf/E0 = 1e4 ... 1e8 at
+    the loss peak, contacts of a quarter and half a wavelength: 11-17 steps at 64 panels, 1-3
+    on each finer grid (from the elastic contact at 512: over 50)."""
+    best, m = None, LADDER_NODES
+    while m < n:
+        g = _Grid(p.profile, p.material, p.speed, m, p.layer)
+        best = (_solve_one(g, p.load, p.sep, [best], p.tol, p.max_outer, p.restart,
+                           p.max_inner, elastic=harmonic), g)
+        m *= 2
+    return best
 
 
 def _try_window(p: _Problem, run: _Run, res, grid) -> BemResult | None:
