@@ -45,6 +45,7 @@ from typing import NamedTuple
 
 from . import roads
 from ._errors import one_line
+from .operating_point import FIT_ONLY
 from ._io import file_bytes
 
 TIME_UNIT_SLS = ("speed = V tau_ref k with tau_ref = tau, the creep (retardation) time of the "
@@ -63,8 +64,21 @@ class Material(NamedTuple):
     window: tuple | None = None
 
 
-def sls_description(ratio) -> dict:
-    """The record's ``material`` of the standard linear solid of E∞/E0 = ratio."""
+def sls_description(ratio, si=None) -> dict:
+    """The record's ``material`` of the standard linear solid of E∞/E0 = ratio; with ``si``
+    (``--units SI``: the point's scales, `viscosine.si.SIScales.describe`) the solid the user
+    gave, in Pa and s: E0, Einf, both times and which was given, E_ref = E0 and tau_ref = the
+    creep time (the units the groups are measured in; the record's ``si_scales`` the same)."""
+    if si is not None:
+        e0, tau = si["E_ref"], si["tau_creep"]
+        out = {"form": "standard_linear_solid", "path": None, "sha256": None, "terms": 1,
+               "ratio": ratio, "E0": e0, "Einf": e0 * ratio, "tau_creep": tau,
+               "tau_relax": si["tau_relax"], "time_given": si["time_given"],
+               "E_ref": e0, "E_ref_is": "E0, the relaxed modulus of the solid [Pa]",
+               "tau_ref": tau, "tau_ref_is": "tau_creep, the creep (retardation) time of the "
+                                             "solid (eq. 2.3) [s]",
+               "time_unit": TIME_UNIT_SLS, "units": "SI"}
+        return out
     return {"form": "standard_linear_solid", "path": None, "sha256": None, "terms": 1,
             "ratio": ratio,
             "E_ref": 1.0, "E_ref_is": "E0, the relaxed modulus of the solid",
@@ -100,7 +114,7 @@ def shift_from_options(wlf=None, shift_table=None):
 
 
 def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
-         per_decade=None, loss_weight=None, si=False, option="--material",
+         per_decade=None, loss_weight=None, nu=None, si=False, option="--material",
          reference_temperature=None) -> Material:
     """Read a material file of any accepted form, at a temperature, for the BEM road.
 
@@ -115,6 +129,10 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         and the weight of E'' against E' (None: the defaults of
         `viscosine.materials.fit_prony`: no bound, times chosen by held-out residual, equal
         weights); refused for a series file.
+    nu : float, optional
+        The Poisson ratio that turns a DMA curve of shear moduli (G', G'') into tensile ones,
+        E = 2 (1 + ν) G (`viscosine.materials.read_dma`); required for such a curve, unused by
+        every other file (the description's ``shear_nu`` says when it was used).
     si : bool
         Units of the file: SI (series in Pa and s; a DMA curve in the unit its header names),
         reference modulus E_r [Pa] and 1 s; else the file's own units (module docstring).
@@ -151,8 +169,8 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
                    "loss_weight": loss_weight}
     given = [k for k, v in fit_options.items() if v is not None]
     if form not in ("dma", "sweeps") and given:
-        raise ValueError(f"--{given[0].replace('_', '-')} is not allowed here: it sets the Prony "
-                         f"fit of a DMA master curve, and {path} is a {form} series")
+        raise ValueError(f"--{given[0].replace('_', '-')} is not allowed here: {FIT_ONLY}, and "
+                         f"{os.path.basename(path)} is {_FORM_NAMES[form]}")
     shift, shift_info = shift_from_options(wlf, shift_table)
     fit_info = curve = model = None
     extra = {}
@@ -170,7 +188,9 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
                 model = vm.read_relaxation(path, data=data)
             elif form in ("dma", "sweeps"):
                 if form == "dma":
-                    curve = vm.read_dma(path, data=data)
+                    curve = _read_dma(vm, path, data, nu)
+                    if curve.shear_nu is not None:
+                        extra["shear_nu"] = curve.shear_nu
                 else:
                     sp = _superposed(vm, path, temperature, reference_temperature)
                     curve, extra["superposition"] = sp.curve, sp.as_dict()
@@ -208,6 +228,25 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         m = at_temperature(m, shift, shift_info, temperature,
                            "--wlf" if wlf is not None else f"--shift-table {shift_table}")
     return m
+
+
+#: a material file's form, as a refusal names it
+_FORM_NAMES = {"creep": "a creep series", "relaxation": "a relaxation series",
+               "time": "an E(t) or J(t) table (fitted in time)", "card": "an FE Prony card"}
+
+
+def _read_dma(vm, path, data, nu):
+    """`read_dma` of a --material file; a shear curve without ``nu`` asks for --nu."""
+    from viscosine.checks import Refusal
+    try:
+        return vm.read_dma(path, data=data, nu=nu)
+    except Refusal as exc:
+        if exc.name != "nu":
+            raise
+        if nu is None:
+            raise ValueError("it holds shear moduli G', G'': give --nu, the Poisson ratio that "
+                             "turns them into tensile ones (E = 2 (1 + ν) G)") from None
+        raise ValueError(f"--nu {nu!r} is not allowed: {one_line(exc.allowed)}") from None
 
 
 def _fit_info(model):
@@ -414,11 +453,15 @@ def reread(info) -> Material:
     """The material of a spec's description (a worker that did not receive the parsed one)."""
     shift = info.get("shift") or {}
     fit = info.get("fit") or {}
+    as_fitted = dict(  # the fit's options as given (a default left to the fit)
+        max_residual=fit.get("bound"),
+        per_decade=fit.get("per_decade") if fit.get("per_decade_chosen_by") == "given" else None,
+        loss_weight=fit.get("loss_weight") if fit.get("loss_weight", 1.0) != 1.0 else None,
+        si=info.get("units") == "SI")
     if info.get("form") == "sweeps":          # their master curve, maybe moved by their WLF
         fitted = shift.get("kind") == "WLF fitted to the isotherms"
         base = read(info["path"], temperature=None if fitted else info.get("temperature"),
-                    reference_temperature=shift.get("T_ref") if fitted else None,
-                    max_residual=fit.get("bound"), si=info.get("units") == "SI")
+                    reference_temperature=shift.get("T_ref") if fitted else None, **as_fitted)
         if not fitted:
             return base
         from viscosine import materials as vm
@@ -428,11 +471,7 @@ def reread(info) -> Material:
                 wlf=(shift["C1"], shift["C2"], shift["T_ref"]) if shift.get("kind") == "WLF"
                 else None,
                 shift_table=shift.get("path") if shift.get("kind") == "table" else None,
-                max_residual=fit.get("bound"),
-                per_decade=fit.get("per_decade") if fit.get("per_decade_chosen_by") == "given"
-                else None,
-                loss_weight=fit.get("loss_weight") if fit.get("loss_weight") != 1.0 else None,
-                si=info.get("units") == "SI")
+                nu=info.get("shear_nu"), **as_fitted)
 
 
 def probed(speed, contact_fraction):

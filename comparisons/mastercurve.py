@@ -57,6 +57,7 @@ from . import operating_point as op
 from ._errors import BadInput
 from ._io import check_output_dir, jsonable, stderr, write_text
 from .plots import mastercurve as figure
+from .plots.materials import report_fit
 from .progress import Progress
 
 #: accuracy asked of every point without --nodes (relative, on μ, Δ/h; absolute on ka, ke)
@@ -200,7 +201,8 @@ def _key(T, V):
 
 def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                           amplitude, nu, nodes=None, rtol=DEFAULT_RTOL, max_residual=None,
-                          per_decade=None, done=None, on_point=None) -> FrictionMasterCurve:
+                          per_decade=None, loss_weight=None, done=None,
+                          on_point=None) -> FrictionMasterCurve:
     """Solve μ at every (temperature, speed) through `bem.solve` (via `runner.run`).
 
     Parameters
@@ -220,13 +222,14 @@ def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressur
     wavelength, amplitude : float
         λ and h of the rigid sinusoid [m].
     nu : float
-        Poisson's ratio.
+        Poisson's ratio (also turns a DMA file of G', G'' into E', E'').
     nodes : int, optional
         A fixed mesh; default: adaptive to ``rtol``.
     rtol : float
         Accuracy of the adaptive mesh (default `DEFAULT_RTOL`).
-    max_residual, per_decade : float, optional
-        The DMA fit's bound and times per decade (file materials).
+    max_residual, per_decade, loss_weight : float, optional
+        The DMA fit's bound, times per decade and weight of E'' against E' (DMA files only;
+        `viscosine.materials.fit_prony`).
     done : dict, optional
         Rows already solved, keyed by ``(repr(T), repr(V))``: taken as they are.
     on_point : callable, optional
@@ -249,7 +252,8 @@ def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressur
     plan, parameters = prepare(material, shift=shift, temperatures=temperatures, speeds=speeds,
                                mean_pressure=mean_pressure, wavelength=wavelength,
                                amplitude=amplitude, nu=nu, nodes=nodes, rtol=rtol,
-                               max_residual=max_residual, per_decade=per_decade)
+                               max_residual=max_residual, per_decade=per_decade,
+                               loss_weight=loss_weight)
     return solve(plan, parameters, done=done, on_point=on_point)
 
 
@@ -268,11 +272,13 @@ def solve(plan, parameters, *, done=None, on_point=None) -> FrictionMasterCurve:
 
 
 def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength, amplitude, nu,
-            nodes=None, rtol=DEFAULT_RTOL, max_residual=None, per_decade=None, shift_info=None,
-            reference_temperature=None):
+            nodes=None, rtol=DEFAULT_RTOL, max_residual=None, per_decade=None, loss_weight=None,
+            shift_info=None, reference_temperature=None, with_material=False):
     """Every input checked and every point's spec built, before any solve.
 
-    Returns ``([(T, V, log10 a_T, spec), ...], parameters)``; raises ValueError (one line).
+    Returns ``([(T, V, log10 a_T, spec), ...], parameters)`` (and, ``with_material``, the
+    material read, at its reference temperature: a `comparisons._materials.Material`); raises
+    ValueError (one line).
     """
     from viscosine import materials as vm
     from viscosine.checks import real
@@ -300,12 +306,14 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                       {"kind": "table", "T": [shift.T[0], shift.T[-1]]})
     if isinstance(material, (str, os.PathLike)):
         base = _materials.read(os.fspath(material), max_residual=max_residual,
-                               per_decade=per_decade, si=True,
+                               per_decade=per_decade, loss_weight=loss_weight, nu=nu, si=True,
                                reference_temperature=reference_temperature)
     else:
-        if max_residual is not None or per_decade is not None:
-            raise ValueError("max_residual, per_decade are not allowed with a Maxwell series: "
-                             "they set the fit of a DMA file")
+        for k, v in (("max_residual", max_residual), ("per_decade", per_decade),
+                     ("loss_weight", loss_weight)):
+            if v is not None:
+                raise ValueError(f"{k}={v!r} is not allowed with a Maxwell series: it sets the "
+                                 "Prony fit of a DMA file")
         base = _materials.from_model(material)
     if reference_temperature is not None and base.info["form"] != "sweeps":
         raise ValueError(f"--reference-temperature {reference_temperature!r} is not allowed: "
@@ -339,7 +347,7 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                   "nu": float(nu), "nodes": nodes, "rtol": None if nodes is not None else rtol,
                   "load": groups["load"][0], "hk": groups["hk"],
                   "time_unit": base.info["time_unit"]}
-    return plan, parameters
+    return (plan, parameters, base) if with_material else (plan, parameters)
 
 
 # ------------------------------------------------------------------------------ files
@@ -427,11 +435,12 @@ def _raw_isotherms(material) -> bool:
 
 def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, speeds,
                 mean_pressure, wavelength, amplitude, nu, nodes=None, rtol=None,
-                max_residual=None, per_decade=None, reference_temperature=None) -> int:
+                max_residual=None, per_decade=None, loss_weight=None,
+                reference_temperature=None) -> int:
     """`python -m comparisons mastercurve`: check every input, then solve every point into the
     folder ``out`` (made when missing): ``points.csv`` continued when it holds a run with the
-    same parameters, then ``mastercurve.json`` and ``mastercurve.png``; progress on standard
-    error.  ``wlf`` (C1, C2, TREF) or ``shift_table`` (a file) is the shift; the other keywords
+    same parameters, then ``mastercurve.json`` and ``mastercurve.png`` (and, for a DMA curve,
+    the fit's figure ``<file stem>_fit.png``); progress on standard error.  ``wlf`` (C1, C2, TREF) or ``shift_table`` (a file) is the shift; the other keywords
     are `prepare`'s (``rtol`` default `DEFAULT_RTOL`).
 
     Returns
@@ -458,13 +467,13 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             shift_info = {"kind": "none", "T_ref": shift.T_ref}
         else:
             shift, shift_info = _materials.shift_from_options(wlf, shift_table)
-        plan, parameters = prepare(
+        plan, parameters, base = prepare(
             material, shift=shift, shift_info=shift_info, temperatures=temperatures,
             speeds=speeds, mean_pressure=mean_pressure, wavelength=wavelength,
             amplitude=amplitude, nu=nu, nodes=nodes,
             rtol=DEFAULT_RTOL if rtol is None else rtol,
-            max_residual=max_residual, per_decade=per_decade,
-            reference_temperature=reference_temperature)
+            max_residual=max_residual, per_decade=per_decade, loss_weight=loss_weight,
+            reference_temperature=reference_temperature, with_material=True)
     except ValueError as exc:  # BadInput too (the runner's and file readers'), re-worded
         text = str(exc).strip().splitlines()[0]
         for name, option in (("--speed ", "--speeds "), ("speed=", "--speeds "),
@@ -487,6 +496,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             "viscosine mastercurve points (python -m comparisons mastercurve)", line, UNITS))
             + ",".join(COLUMNS) + "\n")
     _isotherms_report(out, parameters["material"])
+    report_fit(base, out, "mastercurve")       # a DMA fit: its figure into --out
     t0 = time.monotonic()
     failed = reused_rows = 0
     progress = Progress()

@@ -61,6 +61,7 @@ PARAMETERS = {
     "shift_table": ("--shift-table", "shift_table"),
     "max_residual": ("--max-residual", "max_residual"),
     "per_decade": ("--per-decade", "per_decade"),
+    "loss_weight": ("--loss-weight", "loss_weight"),
     "layer": ("--thickness (d/λ)", "layer"),
     "thickness_over_wavelength": ("--thickness (d/λ)", "thickness_over_wavelength"),
     "foundation": ("--foundation", "foundation"), "nu": ("--nu", "nu"),
@@ -276,7 +277,12 @@ def penetration_clears_layer(penetration, amplitude, thickness):
 
 # ------------------------------------------------------------------------------ the command line
 #: the options of a --material file (keys of ``material_options``)
-MATERIAL_OPTIONS = ("temperature", "wlf", "shift_table", "max_residual", "per_decade")
+MATERIAL_OPTIONS = ("temperature", "wlf", "shift_table", "max_residual", "per_decade",
+                    "loss_weight")
+#: those that steer the Prony fit of a DMA curve (refused for any other material)
+FIT_OPTIONS = ("max_residual", "per_decade", "loss_weight")
+#: why a fit option is refused where no DMA curve is fitted (every door says it)
+FIT_ONLY = "it applies to a DMA curve (--material FILE with E', E'')"
 
 
 def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=None, nodes=None,
@@ -300,8 +306,10 @@ def build(solver, *, load=None, penetration=None, speed=None, ratio=None, hk=Non
         A material file of any accepted form (`comparisons._materials`), BEM only, not with
         ``prony`` or ``ratio``.
     material_options : dict, optional
-        `MATERIAL_OPTIONS` of the material (None = not given); only with ``material``; ``si``
-        True reads the file in SI.
+        `MATERIAL_OPTIONS` of the material (None = not given); only with ``material`` (the fit's
+        `FIT_OPTIONS` only with a DMA curve: `comparisons._materials.read` refuses them for a
+        series); ``si`` True reads the file in SI; ``nu`` (the Poisson ratio of a G', G''
+        curve) is not checked here, since --nu is also --units SI's and a layer's.
     si : dict, optional
         ``--units SI``: the ``si`` description of `resolve_si` (the values are then its groups).
     layer : dict, optional
@@ -360,9 +368,11 @@ def _refuse_inapplicable(solver, *, ratio, hk, nodes, rtol, max_nodes, profile, 
     """`build`'s refusals: every option given where it does not apply (BadInput)."""
     options = {k: v for k, v in (material_options or {}).items() if v is not None}
     options.pop("si", None)  # how the file was read (`runner.read_files`)
+    options.pop("nu", None)  # a G', G'' curve's ν: also --units SI's and a layer's (cli)
     if options and material is None:
-        raise refuse(next(iter(options)), "it applies to a --material file (give the material "
-                     "with --material FILE)")
+        name = next(iter(options))
+        raise refuse(name, FIT_ONLY if name in FIT_OPTIONS else "it applies to a --material "
+                     "file (give the material with --material FILE)")
     if material is not None and prony is not None:
         raise refuse("material", "--prony gives the material already (--material reads the same "
                      "creep-series files, and relaxation series and DMA curves)")
@@ -412,8 +422,10 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
     -------
     dict
         ``load`` or ``penetration`` and ``speed`` (lists of groups), ``ratio`` (the solid's, or
-        None), ``hk``, and ``si``: the JSON description of the scales (the point's ``si``, so
-        every record echoes the conversion).
+        None), ``hk``, and ``si``: the JSON description of the scales
+        (`viscosine.si.SIScales.describe`: values, ``units`` key → unit, the solid's
+        ``tau_creep``, ``tau_relax`` and ``time_given``); the point's ``si``, so every record
+        echoes the conversion as ``si_scales``.
 
     Raises
     ------
@@ -449,11 +461,10 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
     out[key] = [scales(v, speeds[0])[1][key] for v in values]
     out["speed"] = [scales(values[0], v)[1]["speed"] for v in speeds]
     out["ratio"], out["hk"] = sc.ratio, sc.hk
-    out["si"] = {"units": "SI", "nu": given["nu"], "wavelength": sc.wavelength,
-                 "amplitude": sc.amplitude, "E_ref": sc.estar * (1.0 - given["nu"] ** 2),
-                 "tau_ref": sc.tau, "plane_strain_modulus": sc.estar,
-                 "load_is": "p_inf (1 - nu^2)/E_ref, p_inf the --load [Pa]",
-                 "speed_is": "V tau_ref k, V the --speed [m/s], k = 2 pi/wavelength"}
+    # the scales as the Python door's records give them (`viscosine.si.SIScales.describe`):
+    # each value, its unit, and for the solid both times and which was given
+    out["si"] = dict(sc.describe(), load_is="p_inf (1 - nu^2)/E_ref, p_inf the --load [Pa]",
+                     speed_is="V tau_ref k, V the --speed [m/s], k = 2 pi/wavelength")
     return out
 
 
@@ -483,6 +494,6 @@ def check_field_points(n):
 
 
 __all__ = ["DEFAULTS", "FIELD_POINTS", "PARAMETERS", "CLI", "PYTHON", "SPEC_KEYS",
-           "OPTIONAL_KEYS", "MATERIAL_OPTIONS", "OperatingPoint", "at", "build", "bem_only",
+           "OPTIONAL_KEYS", "MATERIAL_OPTIONS", "FIT_OPTIONS", "FIT_ONLY", "OperatingPoint", "at", "build", "bem_only",
            "refuse", "named", "option", "public", "from_spec", "ratio_of", "hk_of", "direction_of",
            "complete_case", "penetration_clears_layer", "resolve_si", "check_field_points"]

@@ -29,7 +29,8 @@ import warnings as _warnings
 import numpy as np
 
 import viscosine
-from viscosine import ViscosineWarning
+from viscosine import ViscosineWarning, protocol
+from viscosine import si as si_front  # `si` is the options' name here
 
 from . import operating_point as op
 from . import roads
@@ -38,15 +39,22 @@ from ._errors import BadInput
 from ._errors import one_line as _one_line
 from ._io import file_bytes
 
-def si_block(rec, info):
-    """The record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``."""
-    from types import SimpleNamespace
-
-    from viscosine import si as si_front  # `si` is the options' name here
+def _si_scales(rec, info):
+    """The `viscosine.si.SIScales` of a record's point, from the spec's ``si`` (its
+    `SIScales.describe`)."""
     lam, h = info["wavelength"], info["amplitude"]
     k = 2.0 * math.pi / lam
-    sc = si_front.SIScales(None, h * k, rec["speed"], rec.get("load"), rec.get("penetration"), k,
-                      info["plane_strain_modulus"], lam, h, info["tau_ref"], {})
+    return si_front.SIScales(info.get("ratio"), h * k, rec["speed"], rec.get("load"),
+                             rec.get("penetration"), k, info["plane_strain_modulus"], lam, h,
+                             info["tau_ref"], {}, time_given=info.get("time_given"),
+                             nu=info.get("nu"))
+
+
+def si_block(rec, info):
+    """The record's ``si`` block: its scalars in SI (m, Pa, m/s) from the spec's ``si``, and
+    ``units`` (each key → its unit, `viscosine.si.UNITS`)."""
+    from types import SimpleNamespace
+    sc = _si_scales(rec, info)
     keys = ("success", "message", "full_contact", "ka", "ke", "ke_hat", "penetration",
             "separation", "load", "tau_f", "mu", "max_pressure", "x_max_pressure")
     r = si_front.result(SimpleNamespace(**{k_: rec.get(k_) for k_ in keys}), sc)
@@ -54,12 +62,30 @@ def si_block(rec, info):
         "contact_halfwidth", "eccentricity", "pressure_eccentricity", "penetration",
         "mean_separation", "mean_pressure", "friction_stress", "friction_coefficient",
         "max_pressure", "x_max_pressure", "wavelength", "amplitude", "plane_strain_modulus")}
-    out["speed"] = rec["speed"] / (info["tau_ref"] * k)
+    out["speed"] = rec["speed"] / (info["tau_ref"] * sc.k)
     if rec.get("layer"):  # the layer's thickness and the indenter's approach, in m
-        out["thickness"] = rec["layer"]["thickness_over_wavelength"] * lam
-        out["approach"] = rec["layer"]["approach"] * h
-    out["units"] = "m, Pa, m/s"
+        out["thickness"] = rec["layer"]["thickness_over_wavelength"] * sc.wavelength
+        out["approach"] = rec["layer"]["approach"] * sc.amplitude
+    out["units"] = {k_: si_front.UNITS[k_] for k_ in out}
     return out
+
+
+def si_warnings(rec, spec):
+    """A line record's warnings with its unit slips said in the SI inputs (the mean pressure
+    in Pa and the modulus it is measured against: `viscosine.si.slip_warnings`) in place of
+    the conventions' wording the road gave them (`viscosine.protocol.slip_warnings`)."""
+    args = (rec["load"], rec["contact_fraction"], _j_plus(rec, spec), bool(rec["full_contact"]))
+    plain = set(protocol.slip_warnings(*args))
+    return ([w for w in rec.get("warnings") or [] if w not in plain]
+            + si_front.slip_warnings(_si_scales(rec, spec["si"]), *args))
+
+
+def _j_plus(rec, spec):
+    """J(0+) of the record's material over its reference compliance (as the roads take it)."""
+    if spec.get("prony") is not None or spec.get("material") is not None:
+        p = _bem_problem(spec)[1]
+        return float(p.J0 - sum(p.J))
+    return 1.0 / rec["ratio"] if rec.get("ratio") else 1.0
 
 
 def surface_si_block(rec, info):
@@ -69,18 +95,20 @@ def surface_si_block(rec, info):
     lx, estar = info["wavelength"], info["plane_strain_modulus"]
     k = 2.0 * math.pi / lx
     h = rec["surface"]["amplitude"] / k
-    return {"mean_pressure": rec["load"] * estar, "friction_stress": rec["tau_f"] * estar,
-            "max_pressure": rec["max_pressure"] * estar,
-            "penetration": rec["penetration"] * h, "separation": rec["separation"] * h,
-            "speed": rec["speed"] / (info["tau_ref"] * k), "length": lx, "amplitude": h,
-            "plane_strain_modulus": estar, "units": "m, Pa, m/s"}
+    out = {"mean_pressure": rec["load"] * estar, "friction_stress": rec["tau_f"] * estar,
+           "max_pressure": rec["max_pressure"] * estar,
+           "penetration": rec["penetration"] * h, "separation": rec["separation"] * h,
+           "speed": rec["speed"] / (info["tau_ref"] * k), "length": lx, "amplitude": h,
+           "plane_strain_modulus": estar}
+    out["units"] = {k_: si_front.UNITS[k_] for k_ in out}
+    return out
 
 
 # ------------------------------------------------------------------------------ input files
 def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
-                  per_decade=None, si=False):
+                  per_decade=None, loss_weight=None, nu=None, si=False):
     """Read a --material file of any accepted form: ``(description, Material)``
-    (`comparisons._materials.read`).
+    (`comparisons._materials.read`; ``nu`` turns a curve of G', G'' into E', E'').
 
     Raises
     ------
@@ -89,7 +117,8 @@ def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_res
     from . import _materials
     try:
         m = _materials.read(path, temperature=temperature, wlf=wlf, shift_table=shift_table,
-                            max_residual=max_residual, per_decade=per_decade, si=si)
+                            max_residual=max_residual, per_decade=per_decade,
+                            loss_weight=loss_weight, nu=nu, si=si)
     except ValueError as exc:
         raise BadInput(_one_line(exc)) from None
     return m.info, m
@@ -223,7 +252,7 @@ def describe_material(spec):
         info = {"form": "creep", **spec["prony"], "terms": len(obj.J),
                 **_materials.references("creep", False, 1.0, None)}
     else:
-        info = _materials.sls_description(spec.get("ratio"))
+        info = _materials.sls_description(spec.get("ratio"), spec.get("si"))
     return info, info.pop("time_unit")
 
 
@@ -277,9 +306,11 @@ def run(spec, fields=False, deep=None):
         rec["material"], rec["time_unit"] = describe_material(spec)
         if spec.get("si") is not None:
             rec["si_scales"] = spec["si"]
-            if rec.get("success"):
-                rec["si"] = (surface_si_block(rec, spec["si"]) if spec.get("surface")
-                             is not None else si_block(rec, spec["si"]))
+            if rec.get("success") and spec.get("surface") is not None:
+                rec["si"] = surface_si_block(rec, spec["si"])
+            elif rec.get("success"):
+                rec["si"] = si_block(rec, spec["si"])
+                rec["warnings"] = si_warnings(rec, spec)
         if spec.get("material") is not None and rec.get("success"):
             from . import _materials
             text = _materials.extrapolation(_material(spec), spec["speed"],

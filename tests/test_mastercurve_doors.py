@@ -85,7 +85,10 @@ SLS_ARGS = ["--E0", "1e6", "--Einf", "3e6", "--tau-creep", "1e-3"]
     (SLS_ARGS + ["--tau-relax", "1", "--temperatures", "20"],
      "--tau-relax is not allowed with --tau-creep"),
     (SLS_ARGS + ["--max-residual", "0.1", "--temperatures", "20"],
-     "--max-residual is not allowed without --material"),
+     "--max-residual is not allowed here: it applies to a DMA curve (--material FILE with "
+     "E', E'')"),
+    (SLS_ARGS + ["--loss-weight", "0", "--temperatures", "20"],
+     "--loss-weight is not allowed here: it applies to a DMA curve"),
     (["--E0", "1e6", "--Einf", "3e6", "--tau", "1", "--temperatures", "20"], "which time?"),
 ])
 def test_what_does_not_fit_is_refused_before_any_work(capsys, tmp_path, argv, message):

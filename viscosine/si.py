@@ -74,7 +74,7 @@ UNITS = {"E_ref": "Pa", "E0": "Pa", "Einf": "Pa", "plane_strain_modulus": "Pa", 
          "friction_stress": "Pa", "friction_coefficient": "-", "mu": "-", "mu_lateral": "-",
          "max_pressure": "Pa", "x_max_pressure": "m", "full_contact_pressure": "Pa",
          "threshold_speed": "m/s", "speed": "m/s", "contact_fraction": "-", "n_patches": "-",
-         "speed_group": "-", "load": "-"}
+         "speed_group": "-", "load": "-", "thickness": "m", "approach": "m"}
 
 
 #: why a bare ``tau`` is refused, and the two names to choose from (every SI door says it)

@@ -172,9 +172,14 @@ def solver_options(p, several):
                         "  Not with --prony or --ratio")
     p.add_argument("--max-residual", type=number, action=Once, metavar="B",
                    help="DMA --material: the largest relative residual on E' or E'' the Prony "
-                        "fit may leave (default 0.05), else refused")
+                        "fit may leave, else refused (default: no bound, the residuals are "
+                        "reported)")
     p.add_argument("--per-decade", type=number, action=Once, metavar="K",
-                   help="DMA --material: relaxation times per decade of the fit (default 2)")
+                   help="DMA --material: relaxation times per decade of the fit (default: "
+                        "chosen by held-out residual)")
+    p.add_argument("--loss-weight", type=number, action=Once, metavar="W",
+                   help="DMA --material: the fit's weight of E'' against E' (default 1: equal; "
+                        "0 fits E' alone; large follows E''), >= 0")
     p.add_argument("--temperature", type=number, action=Once, metavar="T",
                    help="--material at temperature T: every time of the material multiplied by "
                         "a_T(T) (the file holds it at the shift's reference temperature); with "
@@ -206,7 +211,8 @@ def solver_options(p, several):
                               (("--tau-relax",), "s", "relaxation time of the solid, τ E0/Einf "
                                "(instead of --tau-creep)"),
                               (("--nu",), "-", "Poisson's ratio (also, with --thickness, "
-                               "the layer's: its factor S(kd, ν))"),
+                               "the layer's: its factor S(kd, ν); and with a DMA --material "
+                               "of G', G'', in any units, E = 2 (1 + ν) G)"),
                               (("--wavelength",), "m", "λ of the sinusoid (with --surface: "
                                "the cell's side Lx)"),
                               (("--amplitude",), "m", "h of the sinusoid (with --surface "
@@ -337,14 +343,19 @@ def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=Non
                               prony=args.prony, material=args.material, surface=surface,
                               material_options={**material_options(args),
                                                 "si": args.units == "SI" or None})
-    return op.build(args.solver, load=load, penetration=penetration, speed=speed,
-                          ratio=args.ratio, hk=None if surface else args.hk, nodes=args.nodes,
-                          rtol=args.rtol, surface=surface, direction=args.direction,
-                          max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
-                          fields=args.fields is not None, files=files, material=args.material,
-                          material_options={**material_options(args),
-                                            "si": args.units == "SI" or None},
-                          si=si, layer=layer_options(args, si))
+    point = op.build(args.solver, load=load, penetration=penetration, speed=speed,
+                     ratio=args.ratio, hk=None if surface else args.hk, nodes=args.nodes,
+                     rtol=args.rtol, surface=surface, direction=args.direction,
+                     max_nodes=args.max_nodes, profile=args.profile, prony=args.prony,
+                     fields=args.fields is not None, files=files, material=args.material,
+                     material_options={**material_options(args),
+                                       "si": args.units == "SI" or None},
+                     si=si, layer=layer_options(args, si))
+    if (args.nu is not None and si is None and args.thickness is None
+            and not (point.get("material") or {}).get("shear_nu")):
+        raise op.refuse("nu", "without --units SI, only for a layer (--thickness) or a DMA "
+                        "--material of G', G'' (E = 2 (1 + ν) G)", args.nu)
+    return point
 
 
 def layer_options(args, si):
@@ -387,8 +398,8 @@ def units_si(args, files):
     given = {k: getattr(args, k) for k in ("E0", "Einf", "tau_creep", "tau_relax", "nu",
                                            "wavelength", "amplitude")}
     if args.units != "SI":
-        extra = [k for k, v in given.items() if v is not None
-                 and not (k == "nu" and args.thickness is not None)]  # a layer's ν
+        extra = [k for k, v in given.items() if v is not None  # a layer's or a G curve's ν:
+                 and not (k == "nu" and (args.thickness is not None or args.material is not None))]
         if extra:
             raise BadInput(f"--{extra[0].replace('_', '-')} is not allowed without --units SI: "
                            "an SI input (the conventions' groups need none)")
@@ -450,7 +461,9 @@ def _surface_si(args, files):
 
 
 def material_options(args):
-    return {k: getattr(args, k) for k in op.MATERIAL_OPTIONS}
+    """The --material file's options (`operating_point.MATERIAL_OPTIONS`), and ``nu``: --nu
+    turns a DMA curve of G', G'' into E', E'' (also the SI problem's and a layer's ν)."""
+    return {**{k: getattr(args, k) for k in op.MATERIAL_OPTIONS}, "nu": args.nu}
 
 
 def validate(spec):

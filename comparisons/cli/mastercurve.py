@@ -2,6 +2,7 @@
 (`comparisons.mastercurve`)."""
 from __future__ import annotations
 
+from .. import operating_point as op
 from ._common import (EXIT_FAILED, EXIT_OK, BadInput, Once, WhichTime, integer, log_range,
                       number)
 
@@ -52,16 +53,22 @@ def add_parser(sub):
     p.add_argument("--amplitude", type=number, required=True, action=Once, metavar="H",
                    help="h of the rigid sinusoid [m]")
     p.add_argument("--nu", type=number, required=True, action=Once, metavar="NU",
-                   help="Poisson's ratio")
+                   help="Poisson's ratio (also turns a DMA --material of G', G'' into E', E'': "
+                        "E = 2 (1 + ν) G)")
     m = p.add_mutually_exclusive_group()
     m.add_argument("--nodes", type=integer, action=Once, metavar="N",
                    help="a fixed mesh of N panels per period (default: adaptive)")
     m.add_argument("--rtol", type=number, action=Once, metavar="R",
                    help=f"accuracy of the adaptive mesh (default {DEFAULT_RTOL:g})")
     p.add_argument("--max-residual", type=number, action=Once, metavar="B",
-                   help="DMA: the largest relative residual of the Prony fit (default 0.05)")
+                   help="DMA: the largest relative residual of the Prony fit, else refused "
+                        "(default: no bound, the residuals are reported)")
     p.add_argument("--per-decade", type=number, action=Once, metavar="K",
-                   help="DMA: relaxation times per decade of the fit (default 2)")
+                   help="DMA: relaxation times per decade of the fit (default: chosen by "
+                        "held-out residual)")
+    p.add_argument("--loss-weight", type=number, action=Once, metavar="W",
+                   help="DMA: the fit's weight of E'' against E' (default 1: equal; 0 fits E' "
+                        "alone; large follows E''), >= 0")
     p.add_argument("--reference-temperature", type=number, action=Once, metavar="T0",
                    help="raw isotherms: the temperature of their master curve and of the WLF "
                         "fitted to them (default: the isotherm nearest mid-range)")
@@ -80,7 +87,7 @@ def run(args) -> int:
         mean_pressure=args.load, wavelength=args.wavelength, amplitude=args.amplitude,
         nu=args.nu, nodes=args.nodes, rtol=args.rtol, max_residual=args.max_residual,
         reference_temperature=args.reference_temperature,
-        per_decade=args.per_decade)
+        per_decade=args.per_decade, loss_weight=args.loss_weight)
     return EXIT_FAILED if failed else EXIT_OK
 
 
@@ -101,10 +108,9 @@ def _material(args):
         if option not in given:
             raise BadInput(f"{option} is missing: the standard linear solid takes --E0 --Einf "
                            "[Pa] with --tau-creep or --tau-relax [s]")
-    for option in ("max_residual", "per_decade"):
-        if getattr(args, option) is not None:
-            raise BadInput(f"--{option.replace('_', '-')} is not allowed without --material: it "
-                           "sets the fit of a DMA file")
+    for name in op.FIT_OPTIONS:
+        if getattr(args, name) is not None:
+            raise op.refuse(name, op.FIT_ONLY)
     if args.tau_creep is not None and args.tau_relax is not None:
         raise BadInput("--tau-relax is not allowed with --tau-creep: one time of the solid "
                        "(the relaxation time is τ E0/Einf)")

@@ -4,9 +4,7 @@ from __future__ import annotations
 import argparse
 
 from .. import points
-from ..plots.materials import material_fit_figure
-from .._errors import Failed
-from .._io import stderr
+from ..plots.materials import report_fit
 from ._common import (EXIT_FAILED, EXIT_OK, Once, accepted_ranges, check_output_file, resolve,
                       solver_options, units_si, validate)
 
@@ -31,21 +29,5 @@ def run(args):
     spec = resolve(args, load=args.load, penetration=args.penetration, speed=args.speed,
                    files=files, si=si)
     validate(spec)
-    _fit_figure(spec)
+    report_fit(spec.get("_material"), ".", "point")  # a DMA fit: its figure beside the command
     return EXIT_OK if points.point(spec, fields=args.fields) else EXIT_FAILED
-
-
-def _fit_figure(spec):
-    """A DMA --material: its fit figure beside the command (``<stem>_fit.png``), said on
-    standard error with the fit's summary and warnings."""
-    get = getattr(spec, "get", None)
-    material = get("_material") if get is not None else getattr(spec, "_material", None)
-    try:
-        path = material_fit_figure(material)
-    except OSError as exc:
-        raise Failed(f"cannot write the DMA fit figure ({exc.strerror or exc})") from None
-    if path is not None:
-        report = material.model.fit
-        stderr(f"point: DMA fit of {material.info['path']}: {report.summary()}; wrote {path}")
-        for w in report.warnings:
-            stderr(f"point: DMA fit: {w}")

@@ -4,6 +4,7 @@ from __future__ import annotations
 import argparse
 
 from .. import points, sweep_outputs
+from ..plots.materials import report_fit
 from ._common import (EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, Once, accepted_ranges,
                       check_output_dir, check_workers, material_options, parallel_options,
                       resolve, solver_options, units_si, validate)
@@ -45,6 +46,7 @@ def run(args):
     for s in dict.fromkeys(speeds):
         validate(base.replace(speed=s))
     sweep_outputs.check(args.csv, args.plot)
+    report_fit(base.get("_material"), ".", "sweep")  # a DMA fit: its figure beside the command
     with sweep_outputs.Outputs(args.csv, args.plot, control=control, n_speeds=len(speeds),
                                si=si is not None, surface=base.get("surface") is not None) as out:
         failed, refused = points.sweep(base, control, values, speeds, workers=args.workers,

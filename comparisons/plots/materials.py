@@ -47,6 +47,8 @@ import numpy as np
 from viscosine.checks import bad, real, reals
 
 from .. import roads
+from .._errors import Failed
+from .._io import stderr
 from . import pyplot, save
 
 
@@ -262,6 +264,29 @@ def material_fit_figure(material, folder="."):
     if log_a:
         curve = dataclasses.replace(curve, omega=curve.omega / 10.0 ** log_a)
     return dma_fit_figure(os.path.join(folder, f"{stem}_fit.png"), curve, material.model)
+
+
+def report_fit(material, folder, command):
+    """What every command that fits a DMA curve (point, sweep, mastercurve) does with the fit:
+    its figure `material_fit_figure` written into ``folder``, said on standard error with the
+    fit's summary and warnings (``<command>: DMA fit of FILE: ...; wrote PATH``).  Returns the
+    path, or None when nothing was fitted (a series file, no material).
+
+    Raises
+    ------
+    comparisons._errors.Failed
+        The figure cannot be written.
+    """
+    try:
+        path = material_fit_figure(material, folder)
+    except OSError as exc:
+        raise Failed(f"cannot write the DMA fit figure ({exc.strerror or exc})") from None
+    if path is not None:
+        report = material.model.fit
+        stderr(f"{command}: DMA fit of {material.info['path']}: {report.summary()}; wrote {path}")
+        for w in report.warnings:
+            stderr(f"{command}: DMA fit: {w}")
+    return path
 
 
 def dma_fit_figure(path_png, curve, model, *, title=None):

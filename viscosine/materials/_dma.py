@@ -118,6 +118,9 @@ class MasterCurve:
         (``omega`` is always angular).
     notes : tuple of str
         What the reader did to the data (sorted, a units row, a column ignored...).
+    shear_nu : float, optional
+        The Poisson ratio ν the data's shear moduli were turned into these tensile ones with
+        (E = 2 (1 + ν) G, `read_dma`); None for data measured in tension.
 
     Attributes
     ----------
@@ -141,6 +144,7 @@ class MasterCurve:
     modulus_unit: str | None = None
     frequency_unit: str | None = None
     notes: tuple = ()
+    shear_nu: float | None = None
 
     def __post_init__(self):
         arrays = {}

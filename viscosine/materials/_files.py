@@ -507,7 +507,7 @@ def read_dma(path, *, kind: str | None = None, nu=None, frequency_unit: str | No
     try:
         return MasterCurve(omega, cols["storage"] * factor, loss * factor, source=src,
                            modulus_unit=modulus_unit, frequency_unit=frequency_unit,
-                           notes=tuple(notes))
+                           notes=tuple(notes), shear_nu=nu if kind == "G" else None)
     except ValueError as exc:
         text = str(exc)
         m = re.match(r"omega\[(\d+)\]=\S+ is not allowed: (.*)$", text)

@@ -1,0 +1,189 @@
+"""The DMA fit on the command line: ``--loss-weight`` and ``--nu`` reach the fit and the reader
+(point, sweep, mastercurve), are refused where no DMA curve is fitted, and every command that
+fits a curve writes its figure ``<stem>_fit.png`` (point and sweep beside the command,
+mastercurve into --out).  Every run has its own folder as the current one."""
+import json
+import pathlib
+
+import numpy as np
+import pytest
+
+from comparisons import cli
+from viscosine.materials import Maxwell, fit_prony, read_dma
+
+from conftest import ROUNDOFF
+
+#: a relaxation spectrum on the fit's grid (the fit is exact) and its curve, window 1e-2 … 1e3
+SPECTRUM = Maxwell(1.0, tuple([10.0 / 13] * 13), tuple(np.logspace(-4.0, 2.0, 13).tolist()))
+OMEGA = np.logspace(-2.0, 3.0, 41)
+NU = 0.4
+POINT = ["point", "--solver", "bem", "--load", "0.3", "--speed", "1", "--nodes", "1024"]
+SWEEP = ["sweep", "--solver", "bem", "--load", "0.3", "--speed", "1", "2", "--nodes", "1024"]
+MC = ["mastercurve", "--temperatures", "20", "--speeds", "1e-3", "--load", "1e5",
+      "--wavelength", "1e-3", "--amplitude", "1e-4", "--nu", "0.5", "--nodes", "1024"]
+FIT_ONLY = "--loss-weight is not allowed here: it applies to a DMA curve (--material FILE with E', E'')"
+
+
+def _curve(path, header, factor=1.0, loss_factor=1.0):
+    """The curve written to ``path``; its name as typed (relative to the current folder)."""
+    e = SPECTRUM.modulus(OMEGA)
+    path.write_text(header + "\n" + "".join(
+        f"{float(w)!r},{float(s) * factor!r},{float(lo) * factor * loss_factor!r}\n"
+        for w, s, lo in zip(OMEGA, e.real, e.imag)))
+    return pathlib.Path(path.name)
+
+
+@pytest.fixture
+def here(tmp_path, monkeypatch):
+    """A fresh current folder (the figures of point and sweep are written there)."""
+    monkeypatch.chdir(tmp_path)
+    return tmp_path
+
+
+@pytest.fixture
+def tensile(here):
+    return _curve(here / "tensile.csv", "frequency [rad/s],storage [MPa],loss [MPa]")
+
+
+@pytest.fixture
+def shear(here):
+    """The same material as G', G'' (E = 2 (1 + ν) G with ν = NU)."""
+    return _curve(here / "shear.csv", "frequency [rad/s],G' [MPa],G'' [MPa]",
+                  1.0 / (2.0 * (1.0 + NU)))
+
+
+@pytest.fixture
+def inconsistent(here):
+    """E'' twice what E' implies: no series meets both, so the weight moves the fit."""
+    return _curve(here / "inconsistent.csv", "frequency [rad/s],storage [MPa],loss [MPa]",
+                  loss_factor=2.0)
+
+
+def _run(capsys, *argv):
+    rc = cli.main([str(a) for a in argv])
+    out = capsys.readouterr()
+    assert "Traceback" not in out.err
+    return rc, out.out, out.err
+
+
+def _records(capsys, *argv):
+    rc, out, err = _run(capsys, *argv)
+    assert rc == 0, err
+    return [json.loads(line) for line in out.splitlines()], err
+
+
+def _refused(capsys, *argv):
+    rc, out, err = _run(capsys, *argv)
+    assert rc == 2 and out == "", err
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and len(lines[0]) <= 200, err
+    return lines[0]
+
+
+# ------------------------------------------------------------------------------ --loss-weight
+@pytest.mark.parametrize("weight", [0.0, 100.0])
+def test_loss_weight_is_the_fit_of_that_weight(inconsistent, weight, capsys):
+    (rec,), _ = _records(capsys, *POINT, "--material", inconsistent, "--loss-weight", weight)
+    fit = rec["material"]["fit"]
+    want = fit_prony(read_dma(inconsistent), loss_weight=weight).fit
+    assert fit["loss_weight"] == weight
+    assert (fit["storage_rms"], fit["loss_rms"]) == (want.storage_rms, want.loss_rms)
+    equal = fit_prony(read_dma(inconsistent)).fit
+    # the weight moves the fit: E' alone is met better, E'' followed better
+    if weight == 0.0:
+        assert fit["storage_rms"] < 0.5 * equal.storage_rms
+    else:
+        assert fit["loss_rms"] < 0.5 * equal.loss_rms
+
+
+def test_sweep_and_mastercurve_take_the_loss_weight(inconsistent, here, capsys):
+    recs, _ = _records(capsys, *SWEEP, "--material", inconsistent, "--loss-weight", "0")
+    assert [r["material"]["fit"]["loss_weight"] for r in recs] == [0.0, 0.0]
+    rc, _, err = _run(capsys, *MC, "--material", inconsistent, "--loss-weight", "0",
+                      "--out", here / "mc")
+    assert rc == 0, err
+    doc = json.loads((here / "mc" / "mastercurve.json").read_text())
+    assert doc["parameters"]["material"]["fit"]["loss_weight"] == 0.0
+
+
+@pytest.mark.parametrize("argv", [
+    POINT + ["--loss-weight", "0"],
+    SWEEP + ["--loss-weight", "0"],
+    MC + ["--E0", "1e6", "--Einf", "3e6", "--tau-creep", "1", "--loss-weight", "0"],
+], ids=["point", "sweep", "mastercurve"])
+def test_loss_weight_without_a_dma_curve_is_refused(argv, here, capsys):
+    assert _refused(capsys, *argv).endswith(FIT_ONLY)
+    assert not list(here.iterdir())
+
+
+def test_loss_weight_with_a_series_file_is_refused(here, capsys):
+    (here / "relax.txt").write_text("E_r 1\n2 0.5\n")
+    series = "relax.txt"
+    line = _refused(capsys, *POINT, "--material", series, "--loss-weight", "0")
+    assert FIT_ONLY in line and "is a relaxation series" in line
+    assert "is not allowed" in _refused(capsys, *POINT, "--material", series, "--max-residual",
+                                        "0.1")
+
+
+def test_a_bad_loss_weight_is_named(tensile, capsys):
+    line = _refused(capsys, *POINT, "--material", tensile, "--loss-weight", "-1")
+    assert "--loss-weight -1.0 is not allowed: a weight >= 0" in line
+
+
+# ------------------------------------------------------------------------------ --nu and G', G''
+def test_a_shear_curve_with_nu_is_its_tensile_twin(tensile, shear, here, capsys):
+    (e,), _ = _records(capsys, *POINT, "--material", tensile)
+    (g,), _ = _records(capsys, *POINT, "--material", shear, "--nu", NU)
+    assert g["material"]["shear_nu"] == NU and "shear_nu" not in e["material"]
+    for k in ("mu", "penetration", "contact_fraction", "ka"):
+        assert g[k] == pytest.approx(e[k], rel=1e-9, abs=ROUNDOFF), k
+    # --units SI: the problem's --nu converts the curve too
+    si = ["--units", "SI", "--wavelength", "1e-3", "--amplitude", "1e-4", "--nu", NU]
+    (e_si,), _ = _records(capsys, *POINT[:3], "--speed", "1e-3", "--nodes", "1024", "--load",
+                          "1e5", *si, "--material", tensile)
+    (g_si,), _ = _records(capsys, *POINT[:3], "--speed", "1e-3", "--nodes", "1024", "--load",
+                          "1e5", *si, "--material", shear)
+    assert g_si["mu"] == pytest.approx(e_si["mu"], rel=1e-9)
+    # the master curve reads it with its own --nu
+    mc = [a if a != "0.5" else str(NU) for a in MC]
+    for name, f in (("e", tensile), ("g", shear)):
+        rc, _, err = _run(capsys, *mc, "--material", f, "--out", here / name)
+        assert rc == 0, err
+    mu = [json.loads((here / n / "mastercurve.json").read_text())["points"][0]["mu"]
+          for n in ("e", "g")]
+    assert mu[1] == pytest.approx(mu[0], rel=1e-9)
+
+
+def test_nu_is_asked_for_a_shear_curve_and_refused_where_unused(tensile, shear, capsys):
+    assert "it holds shear moduli G', G'': give --nu" in _refused(
+        capsys, *POINT, "--material", shear)
+    assert "--nu 0.7 is not allowed: a Poisson ratio" in _refused(
+        capsys, *POINT, "--material", shear, "--nu", "0.7")
+    assert "--nu 0.4 is not allowed here: without --units SI, only for a layer" in _refused(
+        capsys, *POINT, "--material", tensile, "--nu", "0.4")
+    assert "--nu is not allowed without --units SI" in _refused(capsys, *POINT, "--nu", "0.4")
+
+
+# ------------------------------------------------------------------------------ the fit figure
+def test_point_and_sweep_write_the_fit_figure_beside_the_command(tensile, here, capsys):
+    for argv, command in ((POINT, "point"), (SWEEP, "sweep")):
+        figure = here / "tensile_fit.png"
+        if figure.exists():
+            figure.unlink()
+        _, err = _records(capsys, *argv, "--material", tensile)
+        assert figure.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+        said = [ln for ln in err.splitlines() if ln.startswith(f"{command}: DMA fit of ")]
+        assert len(said) == 1 and said[0].endswith("wrote ./tensile_fit.png"), err
+    # a series file: nothing fitted, no figure
+    series = here / "relax.txt"
+    series.write_text("E_r 1\n2 0.5\n")
+    _, err = _records(capsys, *SWEEP, "--material", series)
+    assert "DMA fit" not in err and not list(here.glob("relax*.png"))
+
+
+def test_mastercurve_writes_the_fit_figure_into_out(tensile, here, capsys):
+    rc, _, err = _run(capsys, *MC, "--material", tensile, "--out", here / "mc")
+    assert rc == 0, err
+    assert (here / "mc" / "tensile_fit.png").read_bytes()[:4] == b"\x89PNG"
+    assert not list(here.glob("*.png"))          # nothing beside the command
+    assert f"mastercurve: DMA fit of {here / tensile}" in err
