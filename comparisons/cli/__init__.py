@@ -3,7 +3,8 @@
     python -m comparisons point --solver {analytic,bem} (--load P | --penetration D) --speed S
                                 [--ratio R] [--hk H] [--nodes N | --rtol T] [--max-nodes M]
                                 [--profile F] [--prony F] [--fields FILE.csv]
-                                [--material F [--max-residual B] [--per-decade K]
+                                [--material F [--max-residual B] [--per-decade K] [--loss-weight W]
+                                 [--nu NU (a DMA curve of G', G'')]
                                  [--temperature T (--wlf C1 C2 TREF | --shift-table F)]]
                                 [--units SI --nu NU --wavelength L --amplitude H
                                  (--E0 E --Einf E (--tau-creep S | --tau-relax S) | --material F)]
