@@ -101,14 +101,25 @@ def test_an_interrupted_sweep_keeps_its_finished_rows_and_curve(capsys, tmp_path
 
 @pytest.mark.parametrize("option, name, message", [
     ("--plot", "mu.jpg", "--plot {}: must end in .png, .pdf, .svg"),
-    ("--plot", "missing/mu.png", "--plot {}: the folder"),
-    ("--csv", "missing/mu.csv", "--csv {}: the folder"),
+    ("--plot", "afile/mu.png", "--plot {}: "),     # a path through a file
+    ("--csv", "afile/mu.csv", "--csv {}: "),
 ])
 def test_an_output_that_cannot_be_written_is_refused_before_any_work(capsys, tmp_path, option,
                                                                     name, message):
+    (tmp_path / "afile").write_text("")
     path = tmp_path / name
     rc, out, err = _run(capsys, "sweep", "--solver", "analytic", "--load", "0.3", "--speed", "1",
                         option, str(path))
     assert rc == 2 and out == "" and len(err.splitlines()) == 1
     assert message.format(path) in err, err
-    assert list(tmp_path.iterdir()) == []
+    assert [p.name for p in tmp_path.iterdir()] == ["afile"]
+
+
+@pytest.mark.parametrize("option, name", [("--plot", "new/mu.png"), ("--csv", "new/mu.csv")])
+def test_a_missing_output_folder_is_made(capsys, tmp_path, option, name):
+    # one rule for every command's outputs: missing folders on the way are created
+    path = tmp_path / name
+    rc, out, err = _run(capsys, "sweep", "--solver", "analytic", "--load", "0.3", "--speed", "1",
+                        option, str(path))
+    assert rc == 0, err
+    assert path.stat().st_size > 0
