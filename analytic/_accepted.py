@@ -20,7 +20,9 @@ PENETRATION_MIN = 1e-40
 RATIO_MAX = 1e8
 HK_MIN, HK_MAX = 1e-6, 1e6
 
-#: name -> (low, high, what is allowed and why).  Bounds are inclusive except ratio > 1.
+#: name -> (low, high, "what is allowed: why").  Bounds are inclusive except ratio > 1.  The
+#: command line shows only what is allowed (up to the first ': ', `viscosine.checks.allowed_part`),
+#: so keep that part short.
 ACCEPTED = {
     "load": (LOAD_MIN, LOAD_MAX,
              f"a mean pressure p̃∞ = p∞(1 − ν²)/E0 in [{LOAD_MIN:g}, {LOAD_MAX:g}]: the contact "
@@ -31,8 +33,8 @@ ACCEPTED = {
                     f"a penetration Δ/h in [{PENETRATION_MIN:g}, 1] (1 is the transition to full "
                     "contact): below, the contact is narrower than the smallest load resolves"),
     "speed": (0.0, SPEED_MAX,
-              f"V/V0 = Vτk equal to 0 (elastic: Westergaard with E0) or in [{SPEED_MIN:g}, "
-              f"{SPEED_MAX:g}]: beyond, the viscoelastic corrections (ke, kê, μ ~ V/V0 or V0/V) "
+              f"V/V0 = Vτk equal to 0 or in [{SPEED_MIN:g}, {SPEED_MAX:g}]: 0 is elastic "
+              "(Westergaard with E0); beyond, the viscoelastic corrections (ke, kê, μ ~ V/V0 or V0/V) "
               "fall below 1e-30 of the elastic solution and the memory layers below 1e-30 of the "
               "contact, a scale the quadrature is not verified on"),
     "ratio": (1.0, RATIO_MAX,

@@ -54,11 +54,13 @@ def _max_nodes():
 #: panels per period refused above this (depends on the machine's memory; 2^16 … 2^24)
 MAX_NODES = _max_nodes()
 
-#: name -> (low, high, what is allowed and why).  Bounds are inclusive unless the text says so.
+#: name -> (low, high, "what is allowed: why").  Bounds are inclusive unless the text says so.
+#: The command line shows only what is allowed (up to the first ': ' outside brackets,
+#: `viscosine.checks.allowed_part`), so keep that part short.
 ACCEPTED = {
     "load": (LOAD_MIN, LOAD_MAX,
              f"a mean pressure p̃∞ = p∞(1 − ν²)/E_ref with p̃∞/(hk) in [{LOAD_OVER_AMPLITUDE[0]:g}, "
-             f"{LOAD_OVER_AMPLITUDE[1]:g}] (hk the amplitude of the profile): below, the contact "
+             f"{LOAD_OVER_AMPLITUDE[1]:g}]: hk is the amplitude of the profile; below, the contact "
              "(2a/λ ≈ (2/π)√(2p̃∞/hk)) is narrower than the finest mesh resolves and Δ/h nears "
              "round-off; above, full contact with σ = p̃∞ + O(hk), whose oscillating part (which "
              "carries the friction) would lose more than ~1e-10 to rounding"),
@@ -67,8 +69,8 @@ ACCEPTED = {
                     "threshold load): below, about the penetration of the smallest accepted load, "
                     "and Δ/h = 1 − s/h would carry more than ~1e-9 relative rounding"),
     "speed": (0.0, SPEED_MAX,
-              f"V τ_ref k equal to 0 (elastic, relaxed moduli) or in [{SPEED_MIN:g}, "
-              f"{SPEED_MAX:g}]: beyond, the viscoelastic corrections fall below 1e-30 of the "
+              f"V τ_ref k equal to 0 or in [{SPEED_MIN:g}, {SPEED_MAX:g}]: 0 is elastic (relaxed "
+              "moduli); beyond, the viscoelastic corrections fall below 1e-30 of the "
               "elastic solution; at 1e308 the kernel overflows"),
     "ratio": (1.0, RATIO_MAX,
               f"E∞/E0 > 1 + {RATIO_EPS:g} and ≤ {RATIO_MAX:g}: nearer 1 the viscoelastic part is "
@@ -89,8 +91,8 @@ ACCEPTED = {
               f"bound is the largest power of two whose solve (~{BYTES_PER_PANEL} bytes per panel) "
               "fits in half of this machine's memory, at most 2^24"),
     "max_nodes": (NODES_MIN, MAX_NODES,
-                  f"a power of two in [{NODES_MIN}, {MAX_NODES}] (the cap of the adaptive "
-                  "refinement; its upper bound is that of nodes)"),
+                  f"a power of two in [{NODES_MIN}, {MAX_NODES}]: the cap of the adaptive "
+                  "refinement; its upper bound is that of nodes"),
     "rtol": (RTOL_MIN, RTOL_MAX,
              f"a relative accuracy target in [{RTOL_MIN:g}, {RTOL_MAX:g}]: tighter than 1e-10 "
              "is below what the edge estimates resolve on the largest meshes; looser than 1e-2 "
@@ -219,7 +221,7 @@ def _check_layer(layer, nodes, penetration, amp):
                   "layer's lowest mode, S(kd) times the half-space's, would carry a relative "
                   f"round-off above {SYMBOL_ROUNDOFF_BUDGET:g} on more panels")
     if penetration is not None and penetration * amp >= layer.thickness:
-        raise bad("penetration", penetration, f"a penetration the layer can take: Δ/h < k d/hk "
-                  f"= {layer.thickness / amp:.6g} (k d = {layer.thickness:g}, hk = {amp:g}); "
-                  "deeper, the indenter would reach the foundation")
+        raise bad("penetration", penetration, f"Δ/h < k d/hk = {layer.thickness / amp:.6g} "
+                  f"(k d = {layer.thickness:g}, hk = {amp:g}): a penetration the layer can "
+                  "take; deeper, the indenter would reach the foundation")
 

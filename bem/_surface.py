@@ -336,8 +336,8 @@ def check_periodic_edges(z, name="heights", value=None, tol=0.5):
         edge = np.max(np.abs(np.take(z, 0, axis=axis) - np.take(z, -1, axis=axis)))
         if inside > 0 and edge > (1.0 + tol) * inside:
             shown = f"an array of shape {z.shape}" if value is None else value
-            raise bad(name, shown, f"a periodic surface: the cell must tile the plane, but its "
-                      f"heights jump by {edge:.3g} across {what}, more than {1 + tol:g} x the "
+            raise bad(name, shown, f"a periodic surface whose cell tiles the plane (the "
+                      f"heights jump by {edge:.3g} across {what}): more than {1 + tol:g} x the "
                       f"largest jump inside ({inside:.3g})")
 
 

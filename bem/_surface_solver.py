@@ -285,11 +285,10 @@ def _surface_problem(*, load, penetration, speed, surface, direction, material, 
                       "grid's Nyquist mode)")
         need = nodes * _ny_for(nodes, surface.aspect)
         if need > cap:
-            raise bad("nodes", nodes, f"a grid that fits in memory: {nodes} x "
+            raise bad("nodes", nodes, f"at most {cap} panels, half this machine's memory "
+                      f"({_memory() / 2 / 2**30:.1f} GiB; {nodes} x "
                       f"{_ny_for(nodes, surface.aspect)} panels take about "
-                      f"{need * SURFACE_BYTES_PER_PANEL / 2**30:.1f} GiB, and half of this "
-                      f"machine's memory is {_memory() / 2 / 2**30:.1f} GiB "
-                      f"(at most {cap} panels)")
+                      f"{need * SURFACE_BYTES_PER_PANEL / 2**30:.1f} GiB)")
     else:
         rtol = SURFACE_RTOL if rtol is None else real(
             "rtol", rtol, "a finite accuracy target in [1e-8, 1e-1]", lambda v: 1e-8 <= v <= 0.1,

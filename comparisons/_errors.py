@@ -71,3 +71,15 @@ def one_line(exc):
     command prints of it on standard error."""
     text = str(exc).strip().splitlines()
     return text[0] if text else type(exc).__name__
+
+
+def reason(exc):
+    """What a command prints of an exception after the option and value it names: for a
+    refusal (`viscosine.checks.Refusal`) ``must be <what is allowed>`` (its why is the docs'
+    and the Python message's), else its first line (`one_line`)."""
+    from viscosine.checks import Refusal, allowed_part
+    if isinstance(exc, Refusal):
+        tail = f" [{exc.unit}]" if exc.unit else ""
+        return f"must be {allowed_part(exc.allowed)}{tail}"
+    return one_line(exc)
+

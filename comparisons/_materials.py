@@ -44,7 +44,7 @@ import os
 from typing import NamedTuple
 
 from . import roads
-from ._errors import one_line
+from ._errors import one_line, reason
 from .operating_point import FIT_ONLY
 from ._io import file_bytes
 
@@ -153,7 +153,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     try:
         form = vm.material_form(path, data=data)
     except ValueError as exc:
-        raise ValueError(f"{where}: {one_line(exc)}") from None
+        raise ValueError(f"{where}: {reason(exc)}") from None
     if form == "sweeps":
         if wlf is not None or shift_table is not None:
             raise ValueError(f"{'--wlf' if wlf is not None else '--shift-table'} is not allowed "
@@ -210,7 +210,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         if model is None:
             _check_creep_range(prony)
     except ValueError as exc:
-        raise ValueError(f"{where}: {one_line(exc)}") from None
+        raise ValueError(f"{where}: {reason(exc)}") from None
     window = model.fit.window if model is not None and model.fit is not None else None
     header = vm.read_window(path, data=data)
     if window is None and header is not None:
@@ -368,8 +368,7 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
     try:
         log_a = float(shift.log10_aT(temperature)) + 0.0  # -0.0 at T_ref reads 0.0
     except ValueError as exc:
-        raise ValueError(f"--temperature {temperature!r} is not allowed: {one_line(exc)} "
-                         f"({option})") from None
+        raise ValueError(f"--temperature {temperature!r}: {reason(exc)} ({option})") from None
     a = 10.0 ** log_a
     model = m.model
     if model is None:

@@ -53,6 +53,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from viscosine.checks import allowed_part
+
 from . import operating_point as op
 from ._errors import BadInput
 from ._io import check_output_dir, jsonable, stderr, write_text
@@ -476,6 +478,9 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             reference_temperature=reference_temperature, with_material=True)
     except ValueError as exc:  # BadInput too (the runner's and file readers'), re-worded
         text = str(exc).strip().splitlines()[0]
+        if text.startswith(("nodes=", "rtol=")) and " is not allowed: " in text:
+            said, _, why = text.partition(" is not allowed: ")  # the road's, by keyword
+            text = f"--{said.replace('=', ' ', 1)}: must be {allowed_part(why)}"
         for name, option in (("--speed ", "--speeds "), ("speed=", "--speeds "),
                              ("--temperature ", "--temperatures "),
                              ("nodes=", "--nodes "), ("rtol=", "--rtol "),

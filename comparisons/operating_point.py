@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 
 import viscosine
 from viscosine.checks import Refusal, shown
+from viscosine.checks import allowed_part as _allowed_part
 
 from ._errors import BadInput
 from ._errors import one_line as _one_line
@@ -89,7 +90,8 @@ def option(name):
 
 def named(exc, door=CLI, point=None):
     """A road's refusal as `BadInput` naming the parameter as the user gave it: on the command
-    line (``door`` CLI) its option, in Python its keyword.  The parameter comes from the
+    line (``door`` CLI) its option and only what is allowed (``--load 0.0: must be ...``), in
+    Python its keyword and the whole reason.  The parameter comes from the
     refusal itself (`viscosine.checks.Refusal`), never from its text; any other error keeps its
     text.  ``point``: the point refused (a whole layer is named by its thickness d/λ)."""
     if not isinstance(exc, Refusal) or exc.name not in PARAMETERS:
@@ -99,19 +101,15 @@ def named(exc, door=CLI, point=None):
         value = point["layer"].get("thickness_over_wavelength")  # the layer as typed: its d/λ
     tail = f" [{exc.unit}]" if exc.unit else ""
     said = PARAMETERS[name][door]
-    text = f"{said} {shown(value)}" if door == CLI else f"{said}={shown(value)}"
-    return BadInput(f"{text} is not allowed: {_one_line(exc.allowed)}{tail}")
+    if door == CLI:  # one short line: what is allowed; why is in --help and the docs
+        return BadInput(f"{said} {shown(value)}: must be {allowed_part(exc.allowed)}{tail}")
+    return BadInput(f"{said}={shown(value)} is not allowed: {_one_line(exc.allowed)}{tail}")
 
 
 def allowed_part(text):
     """What is allowed, without why (the --help's table of ranges): a reason up to its first
-    ': ' outside brackets (an interval such as (1, 10] closes with either)."""
-    text, depth = _one_line(text), 0
-    for i, ch in enumerate(text):
-        depth += (ch in "([") - (ch in ")]")
-        if depth == 0 and text.startswith(": ", i):
-            return text[:i]
-    return text
+    ': ' outside brackets (`viscosine.checks.allowed_part`)."""
+    return _allowed_part(_one_line(text))
 
 
 def refuse(name, why, value=None):
@@ -125,9 +123,9 @@ def refuse(name, why, value=None):
 _BEM_ONLY = {
     "thickness": "the semi-analytic road solves the half-space",
     "foundation": "the semi-analytic road solves the half-space",
-    "profile": "the semi-analytic road solves the sinusoid on the standard linear solid",
-    "prony": "the semi-analytic road solves the sinusoid on the standard linear solid",
-    "material": "the semi-analytic road solves the sinusoid on the standard linear solid",
+    "profile": "the semi-analytic road: sinusoid, standard linear solid",
+    "prony": "the semi-analytic road: sinusoid, standard linear solid",
+    "material": "the semi-analytic road: sinusoid, standard linear solid",
     "surface": "the semi-analytic road solves the line contact",
     "rtol": "the semi-analytic road has no mesh",
     "max_nodes": "the semi-analytic road has no mesh",
@@ -446,9 +444,11 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
                            "material file fixes the moduli and times")
     missing = [k for k in need if k not in given]
     if missing:
-        raise BadInput(f"{option(missing[0])} is missing: --units SI needs --nu, "
-                       "--wavelength, --amplitude [m] and the material (--material FILE, or "
-                       "--E0 --Einf [Pa] with --tau-creep or --tau-relax [s])")
+        raise BadInput(f"{option(missing[0])} is missing: --units SI needs --nu, --wavelength, "
+                       "--amplitude and --material or --E0 --Einf --tau-creep (or --tau-relax)")
+    if material is None and "tau_creep" in given and "tau_relax" in given:
+        raise BadInput(f"--tau-relax {shown(given['tau_relax'])} is not allowed with "
+                       "--tau-creep: give one time of the solid")
     key = "load" if loads is not None else "penetration"
     values = loads if loads is not None else penetrations
 

@@ -37,6 +37,7 @@ from . import roads
 from .gate import check_record, check_surface_record
 from ._errors import BadInput
 from ._errors import one_line as _one_line
+from ._errors import reason as _reason
 from ._io import file_bytes
 
 def _si_scales(rec, info):
@@ -142,7 +143,7 @@ def read_input(name, path, **reader_options):
     try:
         obj = reader(path, **reader_options)
     except (ValueError, UnicodeDecodeError, OSError) as exc:
-        raise BadInput(f"{where}: {_one_line(exc)}") from None
+        raise BadInput(f"{where}: {_reason(exc)}") from None
     info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
     info.update(reader_options)  # a surface file in metres: its units and Lx
     return info, obj

@@ -418,8 +418,7 @@ BAD = [
     (POINT + ["--nu", "0.5"], "", "--nu is not allowed without --units SI"),
     # the master curve
     (MC + ["--material", "{dma}", "--temperatures", "20", "-90", "--speeds", "1", "--out",
-           "{tmp}"], "", "--temperatures -90.0 is not allowed: T=-90.0 is not allowed: a finite "
-                         "temperature above the WLF pole"),
+           "{tmp}"], "", "--temperatures -90.0: must be a finite temperature above the WLF pole"),
     (MC[:1] + ["--shift-table", "{table}"] + MC[5:] + ["--material", "{dma}",
                                                        "--temperatures", "100", "--speeds", "1",
                                                        "--out", "{tmp}"],
@@ -427,7 +426,7 @@ BAD = [
     (MC + ["--material", "{dma}", "--temperatures", "20", "--speeds", "-1", "--out", "{tmp}"],
      "", "--speeds -1.0 is not allowed: a finite sliding speed > 0 [m/s]"),
     (MC + ["--material", "{file}", "--temperatures", "20", "--speeds", "1", "--out", "{tmp}"],
-     _spectrum_curve("frequency,storage,loss"), "modulus_unit=None is not allowed"),
+     _spectrum_curve("frequency,storage,loss"), "must be a modulus unit the DMA header names"),
     (MC + ["--material", "{dma}", "--temperatures", "20", "--speeds", "1", "--out",
            "{file}/x"], "", "is a file, not a folder"),
 ]

@@ -622,7 +622,8 @@ def test_check_on_a_scheduler_without_distributed_names_the_extra(monkeypatch, c
 def test_check_of_an_unknown_case_is_bad_input(capsys):
     rc = cli.main(["suite", "--check", "--cases", "no-such-case"])
     err = capsys.readouterr().err
-    assert rc == 2 and len(err.strip().splitlines()) == 1 and "--cases 'no-such-case'" in err
+    assert rc == 2 and len(err.strip().splitlines()) == 1 and "--cases no-such-case: " in err
+    assert err.startswith("python -m comparisons suite: ") and len(err.strip()) <= 160
 
 
 # ---------------------------------------------------------------------------- --export

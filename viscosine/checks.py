@@ -74,6 +74,19 @@ class Refusal(ValueError):
         return (type(self), (self.name, self.value, self.allowed, self.unit))
 
 
+def allowed_part(text) -> str:
+    """What is allowed, without why: ``text`` (one line) up to its first ``': '`` outside
+    brackets (an interval such as (1, 10] closes with either).  A refusal's text is
+    ``"what is allowed: why"``; the command line shows only the first part."""
+    text = " ".join(str(text).split())
+    depth = 0
+    for i, ch in enumerate(text):
+        depth += (ch in "([") - (ch in ")]")
+        if depth == 0 and text.startswith(": ", i):
+            return text[:i]
+    return text
+
+
 def bad(name, value, allowed, unit=None) -> ValueError:
     """The ValueError (a `Refusal`) that refuses ``name=value``, saying what is allowed
     (``[unit]`` after)."""

@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 
 from . import protocol
-from .checks import bad, real
+from .checks import allowed_part, bad, real
 from .fields import Fields
 
 
@@ -218,8 +218,11 @@ def groups(sc: SIScales, validate, accepted, with_hk=()) -> dict:
             si_name, formula = _SOURCE[name]
             if sc.ratio is None:  # a material in units of its relaxed modulus and tau_ref
                 formula = formula.replace("E0", "E_ref").replace("V τ", "V τ_ref")
-            raise bad(si_name, sc.given[name], f"it gives {formula} = {value!r}, outside the "
-                      f"accepted {accepted[name][2]}") from None
+            text = accepted[name][2]
+            short = allowed_part(text)
+            why = text[len(short) + 2:] if len(text) > len(short) else ""
+            raise bad(si_name, sc.given[name], f"one giving {value:.3g} as {short}: it gives "
+                      f"{formula} = {value!r}" + (f"; {why}" if why else "")) from None
     return out
 
 

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 
-from ._common import EXIT_BAD_INPUT, EXIT_FAILED, EXIT_OK, check_output_dir
+from ._common import EXIT_FAILED, EXIT_OK, check_output_dir
 
 
 def add_parser(sub):
@@ -41,7 +41,7 @@ def run(args) -> int:
     from .. import _cluster, suite, suite_export
     try:
         if args.workers < 1:
-            raise suite.SuiteError(f"--workers {args.workers} is not allowed: an integer >= 1")
+            raise suite.SuiteError(f"--workers {args.workers}: must be an integer >= 1")
         book = suite.load_suite()
         cases = suite.select(book, args.cases)
         if args.list:
@@ -63,10 +63,9 @@ def run(args) -> int:
             check_output_dir("--out", args.out, create=False)
         res = suite.check(args.cases, out=args.out, resume=args.resume, workers=args.workers,
                           scheduler=args.scheduler, suite=book)
-    except (suite.SuiteError, _cluster.MissingPackage) as exc:
-        # bad input, or --scheduler without the cluster extra
-        print(str(exc).splitlines()[0], file=sys.stderr)
-        return EXIT_BAD_INPUT
+    except (suite.SuiteError, _cluster.MissingPackage):
+        # bad input, or --scheduler without the cluster extra: `main` prints it, prefixed
+        raise
     except _cluster.ClusterError as exc:  # an unreachable scheduler
         print(f"suite: {str(exc).splitlines()[0]}", file=sys.stderr)
         return EXIT_FAILED

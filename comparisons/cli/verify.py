@@ -59,7 +59,11 @@ def add_parser(sub):
     src.add_argument("--fields", nargs="+", metavar="F.csv", default=None,
                      help="fields CSV files (several: a convergence study); on a surface case "
                           ".npz files of the conventions (x, y, pressure[, displacement, gap])")
-    src.add_argument("--scalars", metavar="F.jsonl", default=None, help="JSON lines of scalars")
+    src.add_argument("--scalars", metavar="F.jsonl", default=None,
+                     help="JSON lines of scalars: a UTF-8 file of JSON objects, one per "
+                     "result, keyed like the conventions (mu, tau_f, penetration, ka, ...; a "
+                     "surface case: mu, mu_lateral, penetration, contact_fraction, load), with "
+                     "'nodes' when there are several")
     src.add_argument("--callable", metavar="MODULE:FUNCTION", default=None,
                      help="function(point, nodes) returning fields")
     src.add_argument("--peer", choices=["tamaas"], default=None,

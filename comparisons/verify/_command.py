@@ -270,9 +270,8 @@ def _print_verdict(ev):
 
 # ------------------------------------------------------------------------------ surface cases
 #: what --scalars may hold on a surface case
-SURFACE_SCALARS_ALLOWED = ("a UTF-8 file of JSON objects, one per line, keyed like the "
-                           "conventions' surface scalars (mu, mu_lateral, penetration, "
-                           "contact_fraction, load), with 'nodes' when there are several")
+SURFACE_SCALARS_ALLOWED = ("JSON lines of mu, mu_lateral, penetration, "
+                           "contact_fraction, load (see --help)")
 
 
 def _run_surface(args) -> int:

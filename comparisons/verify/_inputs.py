@@ -25,8 +25,8 @@ from .._errors import bad_input
 from .._io import read_text
 from ._quantities import COMPARED_KEYS
 
-SCALARS_ALLOWED = ("a UTF-8 file of JSON objects, one per line, keyed like the conventions "
-                   "(mu, tau_f, penetration, ka, ...), with 'nodes' when there are several")
+#: short: a refusal is one line (the module's docstring and --help say the rest)
+SCALARS_ALLOWED = "JSON lines of mu, tau_f, ... (see --help)"
 
 
 def read_scalars_jsonl(path, option="--scalars", keys=COMPARED_KEYS,

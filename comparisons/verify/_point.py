@@ -24,9 +24,9 @@ def point_from_case(name):
         names = _suite.case_names()
         near = difflib.get_close_matches(str(name), names, n=3, cutoff=0.5)
         raise bad_input("--case", name, "not a suite case",
-                        f"one of the {len(names)} cases `python -m comparisons suite --list` "
-                        "prints" + (f" (closest: {', '.join(near)})" if near else
-                                    f", e.g. {', '.join(names[:3])}")) from None
+                        f"one of the {len(names)} cases of `suite --list`"
+                        + (f" (closest: {', '.join(near)})" if near else
+                           f", e.g. {', '.join(names[:2])}")) from None
     point = dict(case["point"])
     for k in ("profile", "prony", "material"):
         if point.get(k):

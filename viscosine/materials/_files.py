@@ -548,12 +548,14 @@ def material_form(path, *, data: bytes | None = None) -> str:
     """
     where = str(path)
     rows = _text.lines(_text.read_text(path, "material", data))
-    accepted = ("a creep series (first line 'J0 <value>'), a relaxation series (first line "
-                "'E_r <value>'), an FE Prony card, E(t) or J(t) (time, E or J) or a DMA master "
-                "curve (a table whose header names frequency, storage, loss; with temperature: "
-                "raw isotherms)")
+    # what is allowed, short (a command line shows only this), then each form
+    short = "a creep or relaxation series, Prony card, E(t)/J(t) or DMA curve"
+    forms = ("a creep series (first line 'J0 <value>'), a relaxation series (first line "
+             "'E_r <value>'), an FE Prony card, E(t) or J(t) (time, E or J) or a DMA master "
+             "curve (a table whose header names frequency, storage, loss; with temperature: "
+             "raw isotherms)")
     if not rows:
-        raise bad("material", where, f"{accepted} (this file is empty or only comments)")
+        raise bad("material", where, f"{short} (empty or only comments): {forms}")
     number, line = rows[0]
     tokens = line.replace(",", " ").split()
     key = tokens[0].lower()
@@ -581,7 +583,7 @@ def material_form(path, *, data: bytes | None = None) -> str:
     shown = " ".join(tokens)
     if len(shown) > 40:
         shown = shown[:36] + " ..."
-    raise bad("material", where, f"{accepted} (line {number} begins {shown!r})")
+    raise bad("material", where, f"{short}: {forms}; line {number} begins {shown!r}")
 
 
 _SHIFT_COLUMNS = {"temperature": ("temperature", "t", "temp"),
