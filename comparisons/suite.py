@@ -217,7 +217,8 @@ def select(suite, names):
     known = {c["name"]: c for c in cases}
     bad = [n for n in names if n not in known]
     if bad:
-        raise SuiteError(f"--cases {bad[0]!r} is not allowed: one of {', '.join(known)}")
+        raise SuiteError(f"--cases {bad[0]}: must be one of the {len(known)} cases of "
+                         f"`suite --list`, e.g. {', '.join(list(known)[:2])}")
     return [c for c in cases if c["name"] in set(names)]
 
 
