@@ -237,8 +237,8 @@ def _persson(doc, folder, store, n, speeds, plots, png):
             f"{n / SELF_AFFINE['short_cutoff']:g} panels along the shortest wavelength) at p̃∞ = "
             f"{', '.join(f'{p:g}' for p in PERSSON_LOADS)}: the BEM's μ and contact fraction "
             "(mean over the seeds; bars: their range) beside Persson's theory with the "
-            "contact-area correction (analytic.persson, docs/persson.md), which sees the "
-            "spectrum, not the realisation.")
+            "contact-area correction (analytic.references.persson, docs/persson.md), which "
+            "sees the spectrum, not the realisation.")
     doc.table(["p̃∞", "V/V0", "μ, BEM (mean)", "μ, Persson", "Persson/BEM",
                "contact, BEM", "contact, Persson", "Persson/BEM"], rows)
     doc.p("Persson's theory is the field's standard approximation, not a truth: it is a "

@@ -247,7 +247,7 @@ def surface_record(spec, material, parsed, want_fields):
 
 
 def persson(load, speed, spectrum, ratio):
-    """Persson's theory (``analytic.persson``) on a self-affine spectrum (``hurst``,
+    """Persson's theory (``analytic.references.persson``) on a self-affine spectrum (``hurst``,
     ``rolloff``, ``short_cutoff``, ``rms_slope`` of a surface description): (μ, contact
     fraction); RuntimeError when its quadrature did not meet its own bound."""
     from analytic.references import persson as theory
@@ -401,11 +401,11 @@ def surface_harmonics(description):
 
 
 def surface_reference_solution(point, nodes):
-    """The independent surface reference (``analytic.surface_reference.solve``: Douglas–Rachford
+    """The independent surface reference (``analytic.references.surface.solve``: Douglas–Rachford
     splitting, its own measurements and Richardson estimate) at a surface operating point dict
     on the grids ``nodes`` (panels along x); the point's ``layer`` (a plain description, see
     `layer`), if any, under it as the reference's own mapping (k d, foundation, ν: mode q's
-    symbol times its own layer factor S(|q| k d, ν), ``analytic._layer``)."""
+    symbol times its own layer factor S(|q| k d, ν), ``analytic.references._layer``)."""
     from analytic.references import surface as surface_reference
     kw = {} if point.get("layer") is None else {"layer": _analytic_layer(point["layer"])}
     heights, aspect = surface_harmonics(point["surface"])
@@ -416,8 +416,8 @@ def surface_reference_solution(point, nodes):
 
 def bisinusoid_full_contact(speed, direction, ratio, hk, hk_y):
     """Full contact of the bi-sinusoid k z = hk cos kx + hk_y cos ky (square cell) on the
-    standard linear solid ``ratio``, from the line's Appendix B (``analytic.fourier
-    .full_contact``): each family of ridges is the line's sinusoid sliding at the speed
+    standard linear solid ``ratio``, from the line's Appendix B (``analytic.references
+    .fourier.full_contact``): each family of ridges is the line's sinusoid sliding at the speed
     component across it, w cos θ and w sin θ (``docs/surfaces.md`` §2.2, §2.3).
 
     Returns ``{"tau_f", "lateral", "load_threshold"}``: the friction stress along V and the

@@ -964,7 +964,7 @@ SURFACE_KEYS = ("mu", "mu_lateral", "penetration", "contact_fraction")
 SURFACE_FIELD_POINTS = 64
 #: the second opinions a surface case may declare, and what each is
 SURFACE_REFERENCES = {
-    "surface_reference": "the independent surface reference analytic.surface_reference "
+    "surface_reference": "the independent surface reference analytic.references.surface "
                          "(Douglas-Rachford splitting, its own measurements and Richardson "
                          "estimate)",
     "line": "the semi-analytic road of the line contact (the surface is uniform in y: the "
@@ -982,12 +982,13 @@ SURFACE_RULE = (
     "and contact_fraction. The convergence study of each over the grids is the rule above "
     "(order, envelope, Richardson value q_R, estimate E). The second opinion is stated in each "
     "case's definition (references): the independent surface reference "
-    "(analytic.surface_reference, Douglas-Rachford splitting on its own grids, value q_F with "
+    "(analytic.references.surface, Douglas-Rachford splitting on its own grids, value q_F with "
     "its own absolute estimate E_F): the two must agree, |q_R - q_F| <= "
     f"{SAFETY:g} E + E_F, and the certified value is q_R with e = max({SAFETY:g} E, E_F, "
     "|q_R - q_F|), the digits both support; they certify nothing where they disagree or the "
     "reference failed. On a layer the reference solves the same layer (the symbol of each mode "
-    "times its own layer factor S(|q| k d, nu), analytic._layer, from Navier's equations). "
+    "times its own layer factor S(|q| k d, nu), analytic.references._layer, from Navier's "
+    "equations). "
     "A surface uniform in y (line): the certified value is the semi-analytic line road's a, "
     "with e = |a - q_R| (the finest value when the study has no order), and with the surface "
     "reference as well e is at least |a - q_F|. Full contact of the bi-sinusoid "
@@ -1165,7 +1166,7 @@ def compute_surface(case, progress=None):
     if "surface_reference" in refs:
         t0 = time.perf_counter()
         four = _roads.surface_reference_solution(point, case["reference_nodes"])
-        four_rec = {"solver": "analytic.surface_reference", "success": bool(four.success),
+        four_rec = {"solver": "analytic.references.surface", "success": bool(four.success),
                     "message": four.message.splitlines()[0][:300],
                     "warnings": [w[:300] for w in four.warnings],
                     "nodes": [int(g[0]) for g in four.grids]}
