@@ -4,7 +4,7 @@ Everything inside these ranges is solved (or, if a root search ever failed, repo
 failure with its residuals); everything outside is refused up front with a ValueError naming
 the parameter, its value and what is allowed.  The bounds are where double precision, not the
 physics, runs out, and they were verified by property-based tests over the whole box
-(`tests/test_analytic_properties.py`) and a random sample of it (see docs/accuracy.md).
+(`tests/analytic/test_analytic_properties.py`) and a random sample of it (see docs/accuracy.md).
 
 Units as in `analytic/__init__.py`: load p̃∞ = p∞(1 − ν²)/E0, penetration Δ/h, speed
 V/V0 = Vτk, ratio E∞/E0, hk = h k.

@@ -3,7 +3,7 @@
 Everything inside these ranges is solved, or reported as an unconverged result with its
 residuals; everything outside is refused up front with a ValueError naming the parameter, its
 value and what is allowed.  The bounds were chosen from actual solves at N = 1024 at and beyond
-each extreme (see `tests/test_bem_protocol.py`, which also samples the whole box at random).
+each extreme (see `tests/bem/test_bem_protocol.py`, which also samples the whole box at random).
 
 Units as in `bem/__init__.py`: load p∞(1 − ν²)/E_ref, penetration Δ/h, speed V τ_ref k, ratio
 E∞/E0 of the standard linear solid, hk = h k; Prony compliances in 1/E_ref, times in τ_ref.
@@ -77,7 +77,7 @@ ACCEPTED = {
               "round-off (for an elastic material give material=bem.Prony(J0)); measured polymers "
               "across their glass transition reach 1e4 … 1e7 (glassy over rubbery modulus), and "
               "up to 1e8 the answers agree with the semi-analytic road within their estimates "
-              "(tests/test_stiff_ratio.py); above, J(0+) = J0/ratio nears the round-off of "
+              "(tests/validation/test_stiff_ratio.py); above, J(0+) = J0/ratio nears the round-off of "
               "J0 − ΣJ_i.  From about 300 up, "
               "where the pressure memory layer is thinner than a panel, the active-set and Krylov "
               "iterations may not converge (measured at N = 1024 … 2^17): such points come back "

@@ -3,7 +3,7 @@
 Every function here takes arrays and floats, writes into caller-allocated output
 arrays and returns nothing (scalar helpers return a float).  Validation,
 allocation and orchestration live in the other private modules of :mod:`bem`.
-Each kernel has a plain NumPy or dense twin in ``tests/test_bem_kernels.py``.
+Each kernel has a plain NumPy or dense twin in ``tests/bem/test_bem_kernels.py``.
 
 Units (as everywhere in :mod:`bem`): positions ``X = x/lambda``; angles
 ``theta = 2 pi X``; heights and displacements ``k y``, ``k v``; pressure in units

@@ -31,7 +31,7 @@ numerator, which cancels for small t (to O(t^3) at nu = 1/2).  Below ``_T_SERIES
 written as ``2 (1 - 2 nu)(1 - q^2) + 2 q (sinh 2t - 2t)``, with ``sinh u - u`` by its Taylor
 series (`_sinh_minus`); from there on it cancels by at most a factor 3.5.  Beyond ``_T_ONE``
 S is 1 (exactly, as the formulas round there too); ``t = inf`` is the half-space.  Measured
-against a 60-digit reference (``tests/test_layer_factor.py``) the relative error is at most
+against a 60-digit reference (``tests/validation/test_layer_factor.py``) the relative error is at most
 3 ulp for t from 1e-8 to 50 and nu in (-1, 1/2].
 
 References

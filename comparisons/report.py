@@ -456,7 +456,7 @@ def layers_section(doc, folder, store, cfg, timings):
           f"{_fmt(s_of['frictionless'][1.0], 7)} frictionless), differ from the half-space's μ by "
           f"at most {_fmt(thick_diff['bonded'], 2)} (bonded) and "
           f"{_fmt(thick_diff['frictionless'], 2)} (frictionless) relative; from kd = 25 on the "
-          "BEM's answer is the half-space's bit for bit (`tests/test_report_layers.py` runs "
+          "BEM's answer is the half-space's bit for bit (`tests/comparisons/test_report_layers.py` runs "
           "such a spec through this section's route)."
           + (f" {no_est} points have no error estimate (a layer thinner than the estimate "
              "trusts on this mesh)." if no_est else "")

@@ -348,7 +348,7 @@ LAYER_LOAD = 0.3
 #: mode depend on ν (½: incompressible, the stiffest thin layer); the frictionless layer's S_F and
 #: its uniform compression (free ends: C = 1 in (1 − ν²)d/E) do not, so that in the report's
 #: dimensionless numbers (p̃ = p(1 − ν²)/E0) a frictionless layer's answer is the same for
-#: every ν (docs/layers.md §1, §4; tests/test_report_layers.py checks it bit for bit)
+#: every ν (docs/layers.md §1, §4; tests/comparisons/test_report_layers.py checks it bit for bit)
 LAYER_NU = 0.5
 #: d/λ of the friction and contact figures, per foundation (None: the half-space).  At
 #: p̃∞ = 0.3 a frictionless layer thinner than d/λ ≈ 0.15 is compressed as a whole so far
@@ -406,7 +406,7 @@ def uniform_compliance(foundation):
     """C of the section's layer (``docs/layers.md`` §4, free ends): the uniform compression
     under a mean pressure p̃ is C d p̃ J0; (1 − 2ν)/(1 − ν)² bonded (0 at ν = ½), 1
     frictionless.  The BEM reports its own in ``diagnostics["layer"]["uniform_compliance"]``
-    (tests/test_report_layers.py compares them)."""
+    (tests/comparisons/test_report_layers.py compares them)."""
     if foundation == "frictionless":
         return 1.0
     return (1.0 - 2.0 * LAYER_NU) / (1.0 - LAYER_NU) ** 2

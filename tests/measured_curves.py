@@ -1,5 +1,5 @@
 """Realistic measured DMA master curves built from a known Prony material (the test set of
-tests/test_materials_measured.py).
+tests/viscosine/test_materials_measured.py).
 
 A master curve is measured as frequency sweeps at several temperatures, each shifted by its a_T
 onto the reference temperature.  Every sweep here covers `SWEEP_DECADES` decades, consecutive

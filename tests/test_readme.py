@@ -1,8 +1,8 @@
 """The README's examples print what it says they print: its digits come from the code as it is,
 not from a past run.  Each example runs as written (the shell ones with bash, the `viscosine`
 command on the PATH, in a temporary folder) and every number it promises is compared with what
-came out.  The surface examples are checked beside their solver (tests/test_bem_surface.py,
-tests/test_cli_surface.py); docs/tutorial.md by tests/test_tutorial.py."""
+came out.  The surface examples are checked beside their solver (tests/bem/test_bem_surface.py,
+tests/comparisons/test_cli_surface.py); docs/tutorial.md by tests/test_tutorial.py."""
 import contextlib
 import io
 import json

@@ -41,7 +41,7 @@ S is found from one 4 × 4 linear system per mode, two ways (`_thick`, `_thin`):
   components of y(0): the thin layer's small S is then a solved unknown, not a difference.
 
 Each keeps S to a few ulp on its side of `T_SWITCH` (measured against the closed forms in 50
-digits; see ``tests/test_fourier_layer.py``).  From `T_HALF_SPACE` on S is 1 exactly: the first
+digits; see ``tests/validation/test_fourier_layer.py``).  From `T_HALF_SPACE` on S is 1 exactly: the first
 reflection between the faces gives 1 − S ≈ P(t) e^{−2t} with P quadratic (each face's second
 function carries one factor t), measured from the solve as (4/κ) t² (bonded, κ = 3 − 4ν ≥ 1)
 and 4t (frictionless) to leading order, so 1 − S < 2⁻⁵⁴ (S rounds to 1) from t ≈ 22.6 at

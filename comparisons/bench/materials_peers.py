@@ -15,7 +15,7 @@ each fitter.
 
 pyvisco's tables were made once by pyvisco 2.1.3 in a separate environment (pyvisco is no
 dependency of viscosine); each carries, in a ``# ls_res = ...`` line, pyvisco's own residual,
-which `ls_res` here reproduces from the table read back (tests/test_materials_peers.py).
+which `ls_res` here reproduces from the table read back (tests/validation/test_materials_peers.py).
 """
 from __future__ import annotations
 

@@ -32,7 +32,7 @@ What ContactMechanics computes (version 1.8.3, measured here and written where i
 * Pressures are point values at the grid nodes (the Green's function is the continuum's symbol
   on modes |n| ≤ N/2, no aliasing): a collocation of the pressure, where `bem` has panels of
   constant pressure integrated exactly.  The two converge to the same continuum problem; their
-  differences are measured in ``tests/test_peer_contactmechanics.py``.
+  differences are measured in ``tests/validation/test_peer_contactmechanics.py``.
 * Its displacement u is positive into the body, its forces negative in compression, and its
   constraint is gap = u − (height + offset) ≥ 0: ``heights`` is the indenter's protrusion into
   the body (crest = largest value), ``offset`` the rigid approach.  Under load control

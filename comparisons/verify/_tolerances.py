@@ -46,7 +46,7 @@ GRID_MAX_NODES = 1 << 18
 #: (L∞: K (N c)^(-1/2); L2: K N^(-1) c^(-1/2), c = 2a/λ of the reference, 1 in full contact).
 #: K is 3 × the largest constant measured on viscosine's BEM at fixed N = 512, 1024, …, 8192
 #: against the semi-analytic reference on the 17 standard-linear-solid cases of the suite
-#: (MEASURED_FIELD_CONSTANTS, measured by `field_constants`; tests/test_verify.py checks the
+#: (MEASURED_FIELD_CONSTANTS, measured by `field_constants`; tests/comparisons/test_verify.py checks the
 #: worst ones).
 FIELD_LAW = {
     "pressure_Linf": (1.4, 0.5, True),

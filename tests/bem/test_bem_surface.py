@@ -352,7 +352,7 @@ def test_the_readme_surface_example_prints_what_it_says():
     come from the code, not from a past run)."""
     import re
     from pathlib import Path
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     block = next(b for b in re.findall(r"```python\n(.*?)```", text, re.S)
                  if "solve_surface" in b)
     code, promised = block.split("# ", 1)

@@ -113,7 +113,7 @@ def test_the_readme_surface_command_prints_what_it_says(capsys, tmp_path):
     import re
     import shlex
     from pathlib import Path
-    text = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    text = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
     line = next(ln for ln in text.splitlines()
                 if ln.startswith("python -m comparisons point") and "--surface" in ln)
     promised = text.split(line, 1)[1].splitlines()[1]

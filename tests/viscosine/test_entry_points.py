@@ -11,7 +11,7 @@ from pathlib import Path
 
 import pytest
 
-ROOT = Path(__file__).resolve().parents[1]
+ROOT = Path(__file__).resolve().parents[2]
 #: the console script `pip install` puts beside the interpreter (pyproject [project.scripts])
 SCRIPT = Path(sys.executable).parent / "viscosine"
 POINT = ["point", "--solver", "analytic", "--load", "0.3", "--speed", "1"]

@@ -22,7 +22,7 @@ from viscosine.materials import Maxwell, WLF, fit_prony, read_dma
 
 from conftest import ROUNDOFF
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 SUITE = ROOT / "comparisons" / "data" / "suite" / "materials"
 SBR = SUITE / "dma-sbr.csv"
 PRONY2 = SUITE / "prony2.txt"

@@ -15,7 +15,7 @@ from viscosine.materials import (Creep, MasterCurve, Maxwell, ShiftTable, WLF, f
 
 from conftest import ROUNDOFF
 
-ROOT = pathlib.Path(__file__).resolve().parents[1]
+ROOT = pathlib.Path(__file__).resolve().parents[2]
 SBR = ROOT / "comparisons" / "data" / "suite" / "materials" / "dma-sbr.csv"
 EPS = np.finfo(float).eps
 

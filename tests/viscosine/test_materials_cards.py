@@ -150,7 +150,7 @@ def test_pyvisco_tables_as_pyvisco_wrote_them():
     """The Prony tables pyvisco 2.1.3 wrote (comparisons/data/materials_peers): E_0 and
     E_i = E_0 alpha_i as on the file, E_r = E_0 (1 - sum alpha_i)."""
     from pathlib import Path
-    folder = Path(__file__).resolve().parents[1] / "comparisons" / "data" / "materials_peers"
+    folder = Path(__file__).resolve().parents[2] / "comparisons" / "data" / "materials_peers"
     path = folder / "user-master.pyvisco-opt.csv"
     assert card_form(path) == "pyvisco"
     m = read_card(path)

@@ -2,7 +2,7 @@
 standard error, at most 160 characters, beginning with the subcommand's prefix and naming the
 option as typed, no phrase said twice (the CLI contract of `comparisons.cli`).
 
-Run as a script (``python tests/test_cli_messages.py``) it prints the count of lines that break
+Run as a script (``python tests/comparisons/test_cli_messages.py``) it prints the count of lines that break
 the contract and the longest message, over all the command lines below.
 """
 from __future__ import annotations
@@ -15,7 +15,7 @@ import pytest
 from comparisons.cli import main
 
 PROG = "python -m comparisons"
-SBR = (Path(__file__).resolve().parents[1] / "comparisons" / "data" / "suite" / "materials"
+SBR = (Path(__file__).resolve().parents[2] / "comparisons" / "data" / "suite" / "materials"
        / "dma-sbr.csv")
 LIMIT = 160
 
