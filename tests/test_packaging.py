@@ -18,7 +18,8 @@ def test_readme_opens_with_two_commands():
     assert len(cmds) == 2
     assert "pip install ." in cmds[0] and "python -m comparisons" in cmds[0]
     assert "pip install '.[test]'" in cmds[1] and "pytest" in cmds[1]
-    assert cmds[1].endswith("pytest --slow")  # the whole suite: the long studies too
+    # the whole suite, the long studies too, one file per process on both cores
+    assert cmds[1].endswith("pytest --slow -n 2 --dist loadfile")
 
 
 def test_ci_runs_the_readme_test_command():
