@@ -170,16 +170,7 @@ def solver_options(p, several):
                         "temperature column too: superposed at --temperature), E(t)/J(t) tables "
                         "and FE Prony cards (ANSYS, Abaqus, LS-DYNA, pyvisco); docs/materials.md."
                         "  Not with --prony or --ratio")
-    p.add_argument("--max-residual", type=number, action=Once, metavar="B",
-                   help="DMA --material: the largest relative residual on E' or E'' the Prony "
-                        "fit may leave, else refused (default: no bound, the residuals are "
-                        "reported)")
-    p.add_argument("--per-decade", type=number, action=Once, metavar="K",
-                   help="DMA --material: relaxation times per decade of the fit (default: "
-                        "chosen by held-out residual)")
-    p.add_argument("--loss-weight", type=number, action=Once, metavar="W",
-                   help="DMA --material: the fit's weight of E'' against E' (default 1: equal; "
-                        "0 fits E' alone; large follows E''), >= 0")
+    dma_fit_options(p)
     p.add_argument("--temperature", type=number, action=Once, metavar="T",
                    help="--material at temperature T: every time of the material multiplied by "
                         "a_T(T) (the file holds it at the shift's reference temperature); with "
@@ -220,6 +211,20 @@ def solver_options(p, several):
         p.add_argument(*names, type=number, action=Once, metavar="X",
                        help=f"--units SI: {what} [{unit}]")
     p.add_argument("--tau", action=WhichTime, dest="_tau")
+
+
+def dma_fit_options(p):
+    """The Prony fit of a DMA --material (point, sweep, mastercurve)."""
+    p.add_argument("--max-residual", type=number, action=Once, metavar="B",
+                   help="DMA --material: the largest relative residual on E' or E'' the Prony "
+                        "fit may leave, else refused (default: no bound, the residuals are "
+                        "reported)")
+    p.add_argument("--per-decade", type=number, action=Once, metavar="K",
+                   help="DMA --material: relaxation times per decade of the fit (default: "
+                        "chosen by held-out residual)")
+    p.add_argument("--loss-weight", type=number, action=Once, metavar="W",
+                   help="DMA --material: the fit's weight of E'' against E' (default 1: equal; "
+                        "0 fits E' alone; large follows E''), >= 0")
 
 
 def surface_options(p):

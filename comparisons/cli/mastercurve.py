@@ -3,8 +3,8 @@
 from __future__ import annotations
 
 from .. import operating_point as op
-from ._common import (EXIT_FAILED, EXIT_OK, BadInput, Once, WhichTime, integer, log_range,
-                      number)
+from ._common import (EXIT_FAILED, EXIT_OK, BadInput, Once, WhichTime, dma_fit_options,
+                      integer, log_range, number)
 
 #: the standard linear solid's options, as `point --units SI` names them
 _SLS = ("E0", "Einf", "tau_creep", "tau_relax")
@@ -60,15 +60,7 @@ def add_parser(sub):
                    help="a fixed mesh of N panels per period (default: adaptive)")
     m.add_argument("--rtol", type=number, action=Once, metavar="R",
                    help=f"accuracy of the adaptive mesh (default {DEFAULT_RTOL:g})")
-    p.add_argument("--max-residual", type=number, action=Once, metavar="B",
-                   help="DMA: the largest relative residual of the Prony fit, else refused "
-                        "(default: no bound, the residuals are reported)")
-    p.add_argument("--per-decade", type=number, action=Once, metavar="K",
-                   help="DMA: relaxation times per decade of the fit (default: chosen by "
-                        "held-out residual)")
-    p.add_argument("--loss-weight", type=number, action=Once, metavar="W",
-                   help="DMA: the fit's weight of E'' against E' (default 1: equal; 0 fits E' "
-                        "alone; large follows E''), >= 0")
+    dma_fit_options(p)
     p.add_argument("--reference-temperature", type=number, action=Once, metavar="T0",
                    help="raw isotherms: the temperature of their master curve and of the WLF "
                         "fitted to them (default: the isotherm nearest mid-range)")
