@@ -96,6 +96,11 @@ GAP_STEP_TOL = 1e-10
 GAP_STEP_FLOOR = 8.0
 #: the gap step's Krylov restart (its basis is of the free panels' size only) ...
 GAP_STEP_RESTART = 40
+#: under penetration control the gap step's load is corrected (`_gap_solve_sep`) until the
+#: correction is at most this fraction of the full-contact pressure's rms on the free panels
+#: (what the gaps' solve is relative to), at most GAP_SEP_PASSES times a step
+GAP_SEP_SETTLE = 1e-3
+GAP_SEP_PASSES = 4
 #: the gap step's Toeplitz block is applied on the free panels' span (2L-point transforms)
 #: where that span L is at most this fraction of the period, else through the period's
 GAP_LOCAL_SPAN = 0.25
@@ -270,6 +275,52 @@ def _gap_solve(grid: _Grid, free, pfull, x0, rtol, restart, max_inner):
     return sigma, s, its, res / scale * grid.amp, ok, gap
 
 
+def _gap_solve_sep(grid: _Grid, free, pfull0, p0, sep, x0, rtol, restart, max_inner):
+    """Penetration control near full contact: the gaps g of the free panels and the load p.
+
+    As `_gap_solve` with p_full = pfull0 + p (``pfull0`` = C^+ y, the full-contact pressure
+    at zero load), the load now unknown and the mean separation given: s = mean(g) (``sep``).
+    The system is linear in p: g = g_0 + (p - p_0) q with A g_0 = -(pfull0 + p_0)_F and
+    A q = -1 (A = R_F C^+ R_F^T), so p = p_0 + (N s - sum g_0)/sum q.  Starting from the
+    previous step's load ``p0`` (a coarser grid's on the first), the correction is small and
+    the gaps keep their own precision (near full contact the load hangs on s like
+    p_FC - p ~ sqrt(s): the primal step's residual of 1e-10 h left the load 4e-10 off, 1e-8 h
+    below full contact); the gaps are solved again at the corrected load until the correction
+    is at most GAP_SEP_SETTLE of the rms full-contact pressure on the free panels.
+    Returns (sigma_full, s, iterations, residual (scaled like the primal's), ok, gaps)."""
+    n, m = grid.n, free.size
+    span = _FreeSpan(grid, free)
+    keep = _keeps(restart, m)
+    q, total, _, ok = gmres(span.inverse, span.forward, -np.ones(m), np.zeros(m),
+                            rtol * math.sqrt(m), restart, max_inner, keep=keep)
+    qsum = float(q.sum())
+    x = np.zeros(m) if x0 is None else np.asarray(x0, dtype=float)
+    p, res = p0, 0.0
+    base = pfull0[free]
+    for _ in range(GAP_SEP_PASSES if ok and qsum < 0.0 else 0):
+        b = -(base + p)
+        bnorm = float(np.linalg.norm(b))
+        x, its, res, ok = gmres(span.inverse, span.forward, b, x, rtol * bnorm, restart,
+                                max_inner, keep=keep)
+        total += its
+        if not ok:
+            break
+        dp = (n * sep - float(x.sum())) / qsum
+        x += dp * q  # the gaps at the corrected load (the system is linear in p)
+        p += dp
+        if abs(dp) <= GAP_SEP_SETTLE * bnorm / math.sqrt(m):
+            break
+    ok = ok and qsum < 0.0
+    gap = np.zeros(n)
+    gap[free] = x
+    sigma = grid.op.pseudo_solve(gap)
+    sigma += pfull0
+    sigma += p
+    sigma[free] = 0.0
+    scale = max(float(np.max(pfull0)) + p, 1e-300)
+    return sigma, sep, total, res / scale * grid.amp, ok, gap
+
+
 def _gap_step_tol(grid: _Grid, free_panels):
     """The gap step's Krylov tolerance (relative to the full-contact pressure on the free
     panels): GAP_STEP_TOL, or the rounding floor GAP_STEP_FLOOR eps m J0/J(0+) of m free
@@ -399,6 +450,7 @@ class _Mode:
     loose: bool  # a cold start's inexact steps (COLD_KRYLOV_TOL), until the set settles
     dual: bool   # the free-panel step (`_dual_solve`) where most panels are in contact
     pfull: np.ndarray | None = None  # the full-contact pressure: the gap step (`_gap_solve`)
+    # (under penetration control, at zero load: `_gap_solve_sep`)
     roundoff: float = ACTIVE_SET_ROUNDOFF  # the active-set rule's allowance
     seen: dict = field(default_factory=dict)  # key of each active set -> its outer step
     retreat: bool = True  # the cold start's sped-up retreat of runs (`_speed_up_retreat`)
@@ -431,6 +483,12 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
     # periodic grids: a surface's free set is no arc)
     near = isinstance(grid, _Grid) and deficit is not None and \
         deficit <= GAP_STEP_DEFICIT * load
+    if load is None and sep and isinstance(grid, _Grid) and not grid.window:
+        # penetration control: near full contact when the start's load (a coarser grid's)
+        # lies within GAP_STEP_DEFICIT of the grid's full-contact load
+        pfull, p_fc = _full_contact_pressure(grid, 0.0)
+        p0 = float(sigma0.mean())
+        near = p0 > 0.0 and p_fc - p0 <= GAP_STEP_DEFICIT * p0
     mode = _Mode(loose=cold and COLD_KRYLOV_TOL > tol,
                  dual=(load is not None and n >= DUAL_MIN_NODES and not grid.window
                        and not near
@@ -438,7 +496,7 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
                        and _dual_floor(grid) <= DUAL_MAX_DEFICIT_FLOOR * deficit),
                  pfull=pfull if near else None, retreat=retreat)
     # this grid's full-contact load (`_estimate`: is the load clear of its error?)
-    pfc = None if pfull is None else load - float(pfull.min())
+    pfc = None if pfull is None or load is None else load - float(pfull.min())
     del pfull
     for it in range(1, max_outer + 1):
         if not active.any():
@@ -497,6 +555,12 @@ def _step(grid: _Grid, active, sigma, s, held, load, sep, mode, tol, restart, ma
         x0 = None if gap is None or not mode.seen else gap[free].copy()
         gap = None
         rtol = COLD_KRYLOV_TOL if mode.loose else _gap_step_tol(grid, free.size)
+        if load is None:  # penetration control: the load from the previous step's on
+            p0 = float(sigma.mean())
+            return _with_retry(
+                lambda r: _gap_solve_sep(grid, free, mode.pfull, p0, sep, x0, rtol, r,
+                                         max_inner),
+                max(restart, min(GAP_STEP_RESTART, free.size)), free.size, widen)
         return _with_retry(
             lambda r: _gap_solve(grid, free, mode.pfull, x0, rtol, r, max_inner),
             max(restart, min(GAP_STEP_RESTART, free.size)), free.size, widen)
