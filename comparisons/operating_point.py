@@ -99,11 +99,21 @@ def named(exc, door=CLI, point=None):
     name, value = exc.name, exc.value
     if door == CLI and name == "layer" and point is not None and point.get("layer"):
         value = point["layer"].get("thickness_over_wavelength")  # the layer as typed: its d/λ
-    tail = f" [{exc.unit}]" if exc.unit else ""
     said = PARAMETERS[name][door]
     if door == CLI:  # one short line: what is allowed; why is in --help and the docs
-        return BadInput(f"{said} {shown(value)}: must be {allowed_part(exc.allowed)}{tail}")
+        return must_be(said, shown(value), allowed_part(exc.allowed), exc.unit)
+    tail = f" [{exc.unit}]" if exc.unit else ""
     return BadInput(f"{said}={shown(value)} is not allowed: {_one_line(exc.allowed)}{tail}")
+
+
+def must_be(said, value, allowed, unit=None):
+    """The command line's one form of a value out of range, ``<option> <value>: must be
+    <allowed>[ [unit]]`` (``--load -1.0: must be ...``): every door's, the options that are a
+    command's own (verify's ``--rtol``, ``--tol``, ``--dt``) included.  A string ``value`` is
+    shown as typed."""
+    tail = f" [{unit}]" if unit else ""
+    return BadInput(f"{said} {value if isinstance(value, str) else shown(value)}: must be "
+                    f"{allowed}{tail}")
 
 
 def allowed_part(text):
@@ -495,5 +505,5 @@ def check_field_points(n):
 
 __all__ = ["DEFAULTS", "FIELD_POINTS", "PARAMETERS", "CLI", "PYTHON", "SPEC_KEYS",
            "OPTIONAL_KEYS", "MATERIAL_OPTIONS", "FIT_OPTIONS", "FIT_ONLY", "OperatingPoint", "at", "build", "bem_only",
-           "refuse", "named", "option", "public", "from_spec", "ratio_of", "hk_of", "direction_of",
+           "refuse", "named", "must_be", "option", "public", "from_spec", "ratio_of", "hk_of", "direction_of",
            "complete_case", "penetration_clears_layer", "resolve_si", "check_field_points"]

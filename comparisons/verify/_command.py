@@ -15,6 +15,7 @@ import sys
 import time
 from pathlib import Path
 
+from .. import operating_point as op
 from .. import suite as _suite
 from .._errors import BadInput, Failed, bad_input
 from .._io import check_output_dir
@@ -103,7 +104,7 @@ def _tolerance_options(args, keys=ALL_KEYS):
     rtol_given = args.rtol is not None
     rtol = args.rtol if rtol_given else DEFAULT_RTOL
     if not (math.isfinite(rtol) and rtol > 0):
-        raise bad_input("--rtol", rtol, "out of range", "a finite tolerance > 0")
+        raise op.must_be("--rtol", rtol, "a finite tolerance > 0")
     return tols, rtol, rtol_given
 
 
@@ -121,9 +122,9 @@ def _parse_tols(items, keys=ALL_KEYS):
         try:
             val = float(v)
         except ValueError:
-            raise bad_input("--tol", it, "the value is not a number", "a tolerance > 0") from None
+            raise op.must_be("--tol", it, "a finite tolerance > 0") from None
         if not (math.isfinite(val) and val > 0):
-            raise bad_input("--tol", it, "out of range", "a finite tolerance > 0")
+            raise op.must_be("--tol", it, "a finite tolerance > 0")
         out[k] = val
     return out
 
@@ -134,7 +135,7 @@ def _resolutions(args):
     peer = bool(args.peer)
     nodes = args.nodes or list(DEFAULT_PEER_NODES if peer else DEFAULT_NODES)
     if any(n < MIN_POINTS for n in nodes):
-        raise bad_input("--nodes", min(nodes), "too small", f"integers >= {MIN_POINTS}")
+        raise op.must_be("--nodes", min(nodes), f"integers >= {MIN_POINTS}")
     if len(set(nodes)) != len(nodes):
         raise bad_input("--nodes", " ".join(map(str, nodes)), "repeated", "distinct resolutions")
     if args.nodes and not (args.callable or peer):
@@ -145,14 +146,13 @@ def _resolutions(args):
             raise bad_input(opt, val if not isinstance(val, list) else " ".join(map(str, val)),
                             "without --peer", f"{opt} with --peer tamaas")
     if args.dt is not None and not (math.isfinite(args.dt) and args.dt > 0):
-        raise bad_input("--dt", args.dt, "out of range", "a time step > 0 in units of τ")
+        raise op.must_be("--dt", args.dt, "a finite time step > 0 in units of τ")
     cells = None
     if args.dt_cells is not None:
         cells = sorted(args.dt_cells, reverse=True)
         if not all(math.isfinite(c) and c > 0 for c in cells) or len(set(cells)) != len(cells):
-            raise bad_input("--dt-cells", " ".join(f"{c:g}" for c in args.dt_cells),
-                            "not distinct positive numbers",
-                            "time steps in cell crossings T/N, e.g. 4 2 1")
+            raise op.must_be("--dt-cells", " ".join(f"{c:g}" for c in args.dt_cells),
+                             "distinct time steps > 0 in cell crossings T/N, e.g. 4 2 1")
     return nodes, cells
 
 
@@ -290,8 +290,7 @@ def _run_surface(args) -> int:
                         "--nodes with --callable (fields files carry their own N)")
     nodes = list(args.nodes or SURFACE_DEFAULT_NODES)
     if any(n < MIN_POINTS for n in nodes) or len(set(nodes)) != len(nodes):
-        raise bad_input("--nodes", " ".join(map(str, nodes)), "too small or repeated",
-                        f"distinct integers >= {MIN_POINTS}")
+        raise op.must_be("--nodes", " ".join(map(str, nodes)), f"distinct integers >= {MIN_POINTS}")
     check_output_dir("--out", args.out, create=False)
     ref = surface_reference(point, case)
     inputs = {}

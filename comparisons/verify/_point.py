@@ -2,10 +2,9 @@
 checked as the two roads accept it (conventions units; SI options converted)."""
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
-from viscosine.checks import Refusal
+from viscosine.checks import Refusal, shown
 
 from .. import operating_point as op
 from .. import roads
@@ -43,48 +42,49 @@ def is_surface_case(name):
         return False
 
 
-def check_point(point, option_prefix="--"):
-    """BadInput unless the operating point dict is valid (ranges as the two roads accept)."""
-    def num(name, test, allowed):
-        v = point.get(name)
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
-                or not test(v):
-            raise bad_input(option_prefix + name, v, "out of range", allowed)
-        return float(v)
-    if (point.get("load") is None) == (point.get("penetration") is None):
-        raise bad_input(option_prefix + "load", point.get("load"),
-                        "give exactly one of --load and --penetration", "one of them")
-    if point.get("load") is not None:
-        num("load", lambda v: v > 0.0, "a mean pressure p̃∞ > 0")
-    else:
-        num("penetration", lambda v: 0.0 < v <= 1.0, "Δ/h in (0, 1]")
-    num("speed", lambda v: v >= 0.0, "V/V0 ≥ 0")
-    if point.get("prony"):
-        if point.get("ratio") is not None:
-            raise bad_input("--ratio", point["ratio"], "given with --prony",
-                            "one of --ratio and --prony")
-    else:
-        num("ratio", lambda v: v > 1.0, "E∞/E0 > 1")
-    if point.get("profile"):
-        if point.get("hk") is not None:
-            raise bad_input("--hk", point["hk"], "given with --profile",
-                            "one of --hk and --profile")
-    else:
-        num("hk", lambda v: v > 0.0, "hk > 0")
+def check_point(point, door=op.CLI):
+    """BadInput unless the operating point dict is valid: the options that go together, then
+    the ranges of the road that gives the reference (`_reference.reference_for`: the
+    semi-analytic road's where it applies, else the BEM's), refused as every door refuses them
+    (`comparisons.operating_point.named`: on the command line, ``door`` CLI, ``--load -1.0: must
+    be ...``; in Python, ``door`` PYTHON, ``load=-1.0 is not allowed: ...``)."""
+    if point.get("load") is not None and point.get("penetration") is not None:
+        raise op.refuse("penetration", "give one of --load and --penetration",
+                        shown(point["penetration"]))
+    if point.get("load") is None and point.get("penetration") is None:
+        raise BadInput("--load is missing: give --load or --penetration")
+    if point.get("prony") and point.get("ratio") is not None:
+        raise op.refuse("ratio", "the --prony file fixes the material", shown(point["ratio"]))
+    if point.get("profile") and point.get("hk") is not None:
+        raise op.refuse("hk", "the --profile file fixes the indenter and its amplitude",
+                        shown(point["hk"]))
+    if point.get("speed") is None:
+        raise BadInput("--speed is missing: give the sliding speed V/V0")
     if point.get("layer") is not None:
-        check_layer(point["layer"], option_prefix + "layer", point)
-    for k, reader in (("profile", roads.read_profile), ("prony", roads.read_prony)):
+        check_layer(point["layer"], "--layer" if door == op.CLI else "layer", point)
+    problem = [None, None]
+    for i, (k, reader) in enumerate((("profile", roads.read_profile),
+                                     ("prony", roads.read_prony))):
         if point.get(k):
             path = point[k]
             read_text("--" + k, path, f"a {k} file (see bem.read_{k})")
             try:
-                reader(path)
+                problem[i] = reader(path)
             except Refusal as exc:  # what the reader refuses, without its parameter's name
                 raise bad_input("--" + k, path, exc.allowed,
                                 f"the format of bem.read_{k}") from None
             except ValueError as exc:
                 raise bad_input("--" + k, path, _one_line(exc),
                                 f"the format of bem.read_{k}") from None
+    try:  # the reference's road checks its own ranges (one table, one wording)
+        if _suite.two_roads(point):
+            roads.validate_analytic(point)
+        else:
+            roads.validate_bem(point, tuple(problem))
+    except BadInput:
+        raise
+    except ValueError as exc:
+        raise op.named(exc, door, point) from None
     return point
 
 
@@ -138,7 +138,7 @@ def point_and_case(case):
     if isinstance(case, str):
         return point_from_case(case)
     if isinstance(case, dict):  # E∞/E0 and hk lead the point (its order shows in messages)
-        return check_point(complete({"ratio": None, "hk": None, **case}), option_prefix=""), None
+        return check_point(complete({"ratio": None, "hk": None, **case}), op.PYTHON), None
     raise TypeError(f"case={case!r}: a suite case name or an operating-point dict")
 
 
@@ -149,21 +149,20 @@ def point_from_args(args):
     if args.case:
         extra = [k for k, v in given.items() if v is not None]
         if extra:
-            raise bad_input(f"--{extra[0]}", given[extra[0]], "given with --case",
-                            "--case alone, or the operating-point options without --case")
+            raise op.refuse(extra[0], "--case gives the operating point",
+                            shown(given[extra[0]]))
         point, case = point_from_case(args.case)
         si = None
         if args.units == "SI":
             si = si_fields(args)
         return point, case, si
     if given["speed"] is None:
-        raise bad_input("--speed", None, "missing",
-                        "--case NAME or --speed with --load/--penetration")
+        raise BadInput("--speed is missing: give --case NAME, or --speed with --load or "
+                       "--penetration")
     if args.units == "SI":
-        from viscosine.si import scales
         if given["profile"] or given["prony"]:
-            raise bad_input("--units", "SI", "given with --profile/--prony",
-                            "SI operating points for the sinusoid on the standard linear solid")
+            raise op.refuse("units", "SI points are the sinusoid on the standard linear "
+                            "solid (not --profile or --prony)", "SI")
         need = [k for k in ("E0", "Einf", "nu", "wavelength", "amplitude")
                 if getattr(args, k) is None]
         if args.tau_creep is None and args.tau_relax is None:
@@ -172,16 +171,16 @@ def point_from_args(args):
             raise bad_input(f"--{need[0].replace('_', '-')}", None, "missing with --units SI",
                             "--E0 --Einf, --tau-creep or --tau-relax, --nu --wavelength "
                             "--amplitude")
-        try:
-            sc = scales(E0=args.E0, Einf=args.Einf, tau_creep=args.tau_creep,
-                        tau_relax=args.tau_relax, nu=args.nu,
-                        wavelength=args.wavelength, amplitude=args.amplitude, speed=given["speed"],
-                        mean_pressure=given["load"], penetration=given["penetration"])
-        except ValueError as exc:
-            raise BadInput(str(exc)) from None
-        point = {"load": sc.load, "penetration": sc.penetration, "speed": sc.speed,
-                 "ratio": sc.ratio, "hk": sc.hk}
-        point = {k: v for k, v in point.items() if v is not None}
+        si = {k: getattr(args, k) for k in ("E0", "Einf", "tau_creep", "tau_relax", "nu",
+                                             "wavelength", "amplitude")}
+        control = ({"loads": [given["load"]]} if given["load"] is not None else
+                   {"penetrations": [given["penetration"]]})
+        # the SI door of every command (`operating_point.resolve_si`): the groups checked by
+        # the reference's road (the sinusoid on the standard linear solid: semi-analytic)
+        res = op.resolve_si("analytic", si, speeds=[given["speed"]], groups=roads.si_groups,
+                            **control)
+        point = {k: res[k][0] for k in ("load", "penetration") if res[k] is not None}
+        point = dict(point, speed=res["speed"][0], ratio=res["ratio"], hk=res["hk"])
         return check_point(point), None, si_fields(args)
     # the options given, in the parser's order; a default follows them
     point = {k: v for k, v in given.items() if v is not None}
@@ -194,7 +193,11 @@ def si_fields(args):
     if need:
         raise bad_input(f"--{need[0]}", None, "missing with --units SI",
                         "--E0, --nu and --amplitude to convert SI fields")
-    if not (args.E0 > 0 and -1.0 < args.nu <= 0.5 and args.amplitude > 0):
-        raise bad_input("--E0", args.E0, "E0, nu or amplitude out of range",
-                        "E0 > 0 Pa, nu in (-1, 0.5], amplitude > 0 m")
+    from viscosine import si as si_front
+    try:  # the SI front's own checks of E0, ν and h (the other inputs only stand in)
+        si_front.scales(E0=args.E0, Einf=2.0 * args.E0, tau_creep=1.0, nu=args.nu,
+                        wavelength=1.0, amplitude=args.amplitude, speed=0.0,
+                        penetration=args.amplitude)
+    except ValueError as exc:
+        raise op.named(exc) from None
     return (args.E0, args.nu, args.amplitude)

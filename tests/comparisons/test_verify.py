@@ -659,11 +659,12 @@ def test_bad_fields_files_exit_2_with_one_line(tmp_path, capsys, kind):
 
 @pytest.mark.parametrize("argv,start", [
     (["--case", "nope"], "--case nope: not a suite case"),
-    (["--load", "0.3"], "--speed: missing"),
-    (["--load", "-1", "--speed", "1"], "--load -1.0: out of range"),
-    (["--case", CASE, "--speed", "1"], "--speed 1.0: given with --case"),
+    (["--load", "0.3"], "--speed is missing"),
+    (["--load", "-1", "--speed", "1"], "--load -1.0: must be a mean pressure"),
+    (["--load", "1e50", "--speed", "1"], "--load 1e+50: must be a mean pressure"),
+    (["--case", CASE, "--speed", "1"], "--speed 1.0 is not allowed here: --case gives"),
     (["--case", CASE, "--tol", "mu"], "--tol mu: not NAME=VALUE"),
-    (["--case", CASE, "--rtol", "-1"], "--rtol -1.0: out of range"),
+    (["--case", CASE, "--rtol", "-1"], "--rtol -1.0: must be a finite tolerance > 0"),
     (["--load", "0.3", "--speed", "1", "--prony", "/no/such/prony.txt"],
      "--prony /no/such/prony.txt: no such file"),
 ])
@@ -672,6 +673,27 @@ def test_bad_options_exit_2_with_one_line(tmp_path, capsys, argv, start):
     rc, out, err = _run(capsys, *argv, "--fields", str(csv_path), "--out", str(tmp_path))
     assert rc == 2 and len(err.strip().splitlines()) == 1, err
     assert err.startswith("python -m comparisons verify: " + start) and len(err) < 400, err
+
+
+@pytest.mark.parametrize("bad", [["--load", "-1"], ["--load", "1e50"], ["--penetration", "2"],
+                                 ["--load", "0.1", "--ratio", "1"], ["--load", "0.1", "--hk", "0"],
+                                 ["--load", "0.1", "--speed", "nan"]])
+def test_the_point_is_refused_in_the_words_of_point(tmp_path, capsys, bad):
+    """verify checks its point through the operating point's road, as ``point`` does: the same
+    line after the command's name, for the same option and value."""
+    argv = bad if "--speed" in bad else ["--speed", "1", *bad]
+    rc, _, err_verify = _run(capsys, *argv, "--scalars", str(tmp_path / "s.jsonl"))
+    assert rc == 2
+    rc = cli.main(["point", "--solver", "analytic", *argv])
+    err_point = capsys.readouterr().err
+    assert rc == 2
+    said = err_verify.split("verify: ", 1)[1]
+    assert said == err_point.split("point: ", 1)[1] and ": must be " in said
+
+
+def test_a_python_point_is_refused_by_its_keyword():
+    with pytest.raises(ValueError, match=r"^load=-1.0 is not allowed: a mean pressure"):
+        verify.assert_agrees({"mu": 0.1}, {"load": -1, "speed": 1.0})
 
 
 def test_long_messages_keep_the_prefix_and_stay_under_400_characters(tmp_path, capsys):

@@ -243,7 +243,7 @@ def test_assert_agrees_on_a_surface_case():
     (["--callable", "comparisons.verify:viscosine_bem", "--tol", "ka=0.1"],
      "--tol ka=0.1: unknown quantity 'ka'; allowed: mu, mu_lateral"),
     (["--callable", "comparisons.verify:viscosine_bem", "--speed", "1"],
-     "--speed 1.0: given with --case"),
+     "--speed 1.0 is not allowed here: --case gives the operating point"),
 ])
 def test_bad_options_on_a_surface_case_exit_2_with_one_line(tmp_path, capsys, argv, start):
     rc, out, err = _run(capsys, "--case", CASE, *argv, "--out", str(tmp_path))
