@@ -49,7 +49,7 @@ def _speeds(quick):
     return np.logspace(-2, 2, 5 if quick else 9)
 
 
-def surface_spec(load, speed, nodes, surface, direction=0.0, penetration=None):
+def surface_spec(load, speed, nodes, surface, direction=None, penetration=None):
     """The spec of a surface run of the report (`comparisons.operating_point.at`: ``surface`` and
     ``direction`` beside the line's keys)."""
     return op.at("bem", float(speed), load=None if load is None else float(load),

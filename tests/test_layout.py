@@ -246,6 +246,37 @@ def test_only_the_operating_point_writes_a_points_defaults():
         assert not re.search(r"^DEFAULTS\s*=", text, re.M), f"{name} defines DEFAULTS"
 
 
+#: a keyword of the operating point whose default is DEFAULTS' (E∞/E0, hk, sliding direction)
+SIGNATURE_KEYS = ("ratio", "hk", "direction")
+#: the same word for something else: richardson's ratio is the refinement ratio of two meshes
+NOT_A_POINT = {("comparisons.convergence", "richardson", "ratio")}
+
+
+def _signature_defaults(name, path):
+    """(line, function, keyword) of every numeric literal default of a `SIGNATURE_KEYS` keyword."""
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+            continue
+        a = node.args
+        pos = a.posonlyargs + a.args
+        pairs = list(zip(pos[len(pos) - len(a.defaults):], a.defaults))
+        pairs += [(k, d) for k, d in zip(a.kwonlyargs, a.kw_defaults) if d is not None]
+        for arg, d in pairs:
+            if (arg.arg in SIGNATURE_KEYS and isinstance(d, ast.Constant)
+                    and isinstance(d.value, (int, float)) and not isinstance(d.value, bool)
+                    and (name, node.name, arg.arg) not in NOT_A_POINT):
+                yield node.lineno, node.name, arg.arg
+
+
+def test_no_signature_writes_a_points_default():
+    """The peers and every job take E∞/E0, hk and the direction's defaults from
+    comparisons.operating_point.DEFAULTS, not from a literal in a signature."""
+    found = [f"{name}:{line} {func}({key}=...)" for name, path in MODULES.items()
+             if name != "comparisons.operating_point"
+             for line, func, key in _signature_defaults(name, path)]
+    assert not found, f"literal point defaults in signatures: {found}"
+
+
 def test_no_module_reads_an_error_text_back_into_an_option_name():
     # a refusal carries its parameter (viscosine.checks.Refusal); operating_point.named says it
     pattern = re.compile(r"re\.match\([^)]*is not allowed|split\(\": \", 1\)\[-1\]")

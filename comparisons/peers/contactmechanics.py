@@ -69,8 +69,12 @@ import viscosine
 from viscosine import Fields
 from viscosine.checks import bad, integer, real
 
+from .. import operating_point as _op
 from .._errors import MissingPackage
 from ..fields import true_runs
+
+#: hk where a caller names none: the operating point's default (written once there)
+HK = _op.DEFAULTS["hk"]
 
 #: the ContactMechanics release this adapter was verified on (the ``peers`` extra pins it, and
 #: muGrid, SurfaceTopography and NuMPI, to releases with CPython 3.11 wheels)
@@ -336,7 +340,7 @@ def _heights(profile, hk, nodes):
     return y, float(np.max(y))
 
 
-def solve(*, load, hk=1.0, thickness=None, nu=0.0, nodes=256, profile=None, tolerance=1e-12,
+def solve(*, load, hk=HK, thickness=None, nu=0.0, nodes=256, profile=None, tolerance=1e-12,
           max_iterations=100000):
     """The elastic frictionless contact of a periodic profile on a bonded layer (or the
     half-space), by ContactMechanics's Polonsky–Keer solver under load control.
@@ -374,8 +378,8 @@ def solve(*, load, hk=1.0, thickness=None, nu=0.0, nodes=256, profile=None, tole
     MissingPackage
         ContactMechanics is not installed (the message says ``pip install 'viscosine[peers]'``).
     """
-    if profile is not None and hk != 1.0:
-        raise bad("hk", hk, "1.0 (the default) with a profile: its amplitude is the profile's")
+    if profile is not None and hk != HK:
+        raise bad("hk", hk, f"{HK!r} (the default) with a profile: its amplitude is the profile's")
     v = validate(load=load, hk=hk, nu=nu, nodes=nodes, tolerance=tolerance,
                  max_iterations=max_iterations,
                  **({} if thickness is None else {"thickness": thickness}))

@@ -85,6 +85,7 @@ import numpy as np
 
 from viscosine.checks import bad, integer, real, series
 
+from .. import operating_point as _op
 from ..convergence import richardson
 from ..fields import count_patches
 from .contactmechanics import _import_contactmechanics
@@ -92,6 +93,9 @@ from .tamaas import (_E_TAMAAS, _ESTAR0, _NU, CELLS_PER_STEP, _change, _import_t
                      _SteadyRun, _stepping, _steps_per_period, _verdict, steadiness)
 
 _TWO_PI = 2.0 * math.pi
+#: E∞/E0, hk and the sliding direction where a caller names none: the operating point's
+#: defaults (written once there)
+RATIO, HK, DIRECTION = _op.DEFAULTS["ratio"], _op.DEFAULTS["hk"], _op.DEFAULTS["direction"]
 
 #: name -> (low, high, what is allowed and why); bounds inclusive
 ACCEPTED = {
@@ -186,7 +190,7 @@ def grid(shape, aspect=1.0):
     return np.arange(nx) / nx - 0.5, (np.arange(ny) / ny - 0.5) * aspect
 
 
-def bisinusoid(nodes, hk=1.0):
+def bisinusoid(nodes, hk=HK):
     """The bi-sinusoid k z = hk [cos kx + cos ky] on a square nodes × nodes grid.
 
     Its crest is at node (nodes/2, nodes/2) and h_ref = 2h.
@@ -220,7 +224,7 @@ def _slope(u, axis, length):
     return np.real(np.fft.ifft(1j * q.reshape(shape) * np.fft.fft(u, axis=axis), axis=axis))
 
 
-def _measure(sigma, u, z, h_ref, aspect, direction=0.0):
+def _measure(sigma, u, z, h_ref, aspect, direction=DIRECTION):
     """The scalars of one solution on the grid.
 
     ``sigma`` in E0/(1 − ν²); ``u``, ``z`` and ``h_ref`` in one length unit, that of Lx = 1
@@ -285,7 +289,7 @@ def _elastic_record(code, version, ok, message, sigma, u, gap, z, h_ref, aspect,
             "load_error": abs(meas["load"] / load - 1.0)}
 
 
-def tamaas_elastic(heights, aspect=1.0, *, load, modulus="relaxed", ratio=3.0, tolerance=1e-8):
+def tamaas_elastic(heights, aspect=1.0, *, load, modulus="relaxed", ratio=RATIO, tolerance=1e-8):
     """The elastic frictionless contact of a periodic surface by Tamaas's Polonsky–Keer solver.
 
     Parameters
@@ -350,7 +354,7 @@ def tamaas_elastic(heights, aspect=1.0, *, load, modulus="relaxed", ratio=3.0, t
                            aspect, load, m, tol, _last_iteration(log.getvalue()), wall, error)
 
 
-def contactmechanics_elastic(heights, aspect=1.0, *, load, modulus="relaxed", ratio=3.0,
+def contactmechanics_elastic(heights, aspect=1.0, *, load, modulus="relaxed", ratio=RATIO,
                              tolerance=1e-8, max_iterations=100000):
     """The elastic frictionless contact of a periodic surface by ContactMechanics.
 
@@ -511,8 +515,8 @@ def _extrapolated(rows, keys):
     return rich, err, order
 
 
-def tamaas_viscoelastic_surface(heights, aspect=1.0, *, load, speed, direction=0.0, ratio=3.0,
-                                cells_per_step=CELLS_PER_STEP, tolerance=1e-10,
+def tamaas_viscoelastic_surface(heights, aspect=1.0, *, load, speed, direction=DIRECTION,
+                                ratio=RATIO, cells_per_step=CELLS_PER_STEP, tolerance=1e-10,
                                 steady_rtol=1e-6, max_periods=400):
     """Tamaas's viscoelastic solver under a sliding periodic surface, stepped to steady sliding
     at several time steps and extrapolated to dt → 0.

@@ -71,8 +71,12 @@ from viscosine import Fields
 from viscosine.checks import bad, integer, real, series
 from viscosine.protocol import SCALAR_KEYS, Patch, plain
 
+from .. import operating_point as _op
 from ..convergence import richardson
 from ..fields import true_runs
+
+#: E∞/E0 and hk where a caller names none: the operating point's defaults (written once there)
+RATIO, HK = _op.DEFAULTS["ratio"], _op.DEFAULTS["hk"]
 
 #: the Tamaas versions this adapter was verified on (its conventions are measured, not assumed)
 TAMAAS_REQUIREMENT = "tamaas>=2.9,<2.10"
@@ -359,7 +363,7 @@ def _stepping(dt, speed, nodes):
 
 
 # ----------------------------------------------------------------------------- solve
-def solve(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dt=None, tolerance=1e-10,
+def solve(*, load, speed, ratio=RATIO, hk=HK, nodes=512, dt=None, tolerance=1e-10,
           steady_rtol=1e-6, max_periods=400):
     """Run Tamaas's viscoelastic solver to steady sliding of the sinusoid and convert its output.
 
@@ -695,7 +699,7 @@ def _order(dts, values):
     return 0.5 * (lo + hi)
 
 
-def dt_study(*, load, speed, ratio=3.0, hk=1.0, nodes=512, dts=None, mesh_check=False,
+def dt_study(*, load, speed, ratio=RATIO, hk=HK, nodes=512, dts=None, mesh_check=False,
              **options):
     """Run `solve` at several time steps and extrapolate to dt → 0 (backward Euler: first order).
 
@@ -855,7 +859,7 @@ class DtExtrapolation:
                                             for k in ("pressure", "displacement", "gap")))
 
 
-def dt_extrapolation(*, load, speed, ratio=3.0, hk=1.0, nodes=512, cells_per_step=CELLS_PER_STEP,
+def dt_extrapolation(*, load, speed, ratio=RATIO, hk=HK, nodes=512, cells_per_step=CELLS_PER_STEP,
                      progress=None, **options):
     """`solve` at dt = c·T/N for each c of ``cells_per_step`` and the values at dt → 0.
 
@@ -914,7 +918,7 @@ def dt_extrapolation(*, load, speed, ratio=3.0, hk=1.0, nodes=512, cells_per_ste
 
 
 # ----------------------------------------------------------------------------- the table
-def friction_peak(*, load, ratio=3.0, hk=1.0):
+def friction_peak(*, load, ratio=RATIO, hk=HK):
     """The speed V/V0 of the largest μ on the semi-analytic road, and that μ.
 
     A log-spaced scan of 61 speeds over 1e-3 ≤ V/V0 ≤ 1e3, refined by bounded Brent.
@@ -935,7 +939,7 @@ def friction_peak(*, load, ratio=3.0, hk=1.0):
     return 10.0 ** float(res.x), -float(res.fun)
 
 
-def third_code_table(*, load=0.15, ratio=3.0, hk=1.0, speeds=None, nodes=512,
+def third_code_table(*, load=0.15, ratio=RATIO, hk=HK, speeds=None, nodes=512,
                      cells_per_step=CELLS_PER_STEP, mesh_check=False, **options):
     """Tamaas against the semi-analytic road: μ per dt, order, Richardson μ, analytic μ.
 
