@@ -148,8 +148,9 @@ def analytic_record(spec, points, deep):
     ``deep``: the constraint figures from the graded quadrature of the fields (a few ms).
     """
     import analytic
+    from viscosine import protocol
     sol = analytic.solve(**_controls(spec), speed=spec["speed"], ratio=spec["ratio"], hk=spec["hk"])
-    rec = sol.as_dict()
+    rec = _worded(sol.as_dict(), spec, sol.warnings, protocol.instantaneous_compliance(sol))
     if not sol.success:
         return Solved(rec, None, None)
     f = None
@@ -171,8 +172,9 @@ def bem_record(spec, problem, want_fields):
     constraint figures come with every converged result (the panel values are at hand).
     """
     import bem
+    from viscosine import protocol
     res = bem.solve(**_bem_kwargs(spec, problem))
-    rec = res.as_dict()
+    rec = _worded(res.as_dict(), spec, res.warnings, protocol.instantaneous_compliance(res))
     rec.setdefault("iterations", int(res.nit))
     rec["profile_file"] = spec.get("profile")
     rec["prony_file"] = spec.get("prony")
@@ -188,6 +190,19 @@ def bem_record(spec, problem, want_fields):
          "min_gap": float(np.min(f.gap)),
          "mean_pressure_error": abs(f.mean("pressure") / load - 1.0)}
     return Solved(rec, f if want_fields else None, c)
+
+
+def _worded(rec, spec, own, j_plus):
+    """A record whose ``warnings`` are the road's own (``own``, the result's) and then its unit
+    slips in the units the point was given in (`viscosine.si.slip_warnings`: in SI, naming the
+    pressure in Pa and the modulus, under ``--units SI``, the spec's ``si``; in the conventions'
+    groups otherwise), line and surface alike.  ``j_plus``: J(0+) over the reference compliance."""
+    from viscosine import si
+    if rec.get("success"):
+        rec["warnings"] = list(own) + si.slip_warnings(
+            spec.get("si"), rec["load"], rec["contact_fraction"], j_plus,
+            bool(rec["full_contact"]))
+    return rec
 
 
 # ------------------------------------------------------------------------------ surfaces
@@ -236,7 +251,8 @@ def surface_record(spec, material, parsed, want_fields):
     against the load), as on the line."""
     import bem
     res = bem.solve_surface(**_surface_kwargs(spec, material, parsed))
-    rec = res.as_dict()
+    j_plus = material.j_plus if material is not None else 1.0 / spec["ratio"]
+    rec = _worded(res.as_dict(), spec, res.warnings, j_plus)
     if not res.success:
         return Solved(rec, None, None)
     smax = float(np.max(res.pressure))

@@ -29,7 +29,7 @@ import warnings as _warnings
 import numpy as np
 
 import viscosine
-from viscosine import ViscosineWarning, protocol
+from viscosine import ViscosineWarning
 from viscosine import si as si_front  # `si` is the options' name here
 
 from . import operating_point as op
@@ -69,24 +69,6 @@ def si_block(rec, info):
         out["approach"] = rec["layer"]["approach"] * sc.amplitude
     out["units"] = {k_: si_front.UNITS[k_] for k_ in out}
     return out
-
-
-def si_warnings(rec, spec):
-    """A line record's warnings with its unit slips said in the SI inputs (the mean pressure
-    in Pa and the modulus it is measured against: `viscosine.si.slip_warnings`) in place of
-    the conventions' wording the road gave them (`viscosine.protocol.slip_warnings`)."""
-    args = (rec["load"], rec["contact_fraction"], _j_plus(rec, spec), bool(rec["full_contact"]))
-    plain = set(protocol.slip_warnings(*args))
-    return ([w for w in rec.get("warnings") or [] if w not in plain]
-            + si_front.slip_warnings(_si_scales(rec, spec["si"]), *args))
-
-
-def _j_plus(rec, spec):
-    """J(0+) of the record's material over its reference compliance (as the roads take it)."""
-    if spec.get("prony") is not None or spec.get("material") is not None:
-        p = _bem_problem(spec)[1]
-        return float(p.J0 - sum(p.J))
-    return 1.0 / rec["ratio"] if rec.get("ratio") else 1.0
 
 
 def surface_si_block(rec, info):
@@ -311,7 +293,6 @@ def run(spec, fields=False, deep=None):
                 rec["si"] = surface_si_block(rec, spec["si"])
             elif rec.get("success"):
                 rec["si"] = si_block(rec, spec["si"])
-                rec["warnings"] = si_warnings(rec, spec)
         if spec.get("material") is not None and rec.get("success"):
             from . import _materials
             text = _materials.extrapolation(_material(spec), spec["speed"],

@@ -165,12 +165,23 @@ def _replace(sc, **kw):
     return replace(sc, **kw)
 
 
-def slip_warnings(sc: SIScales, load, contact_fraction, j_plus, full_contact=False) -> list:
-    """`viscosine.protocol.unit_slips` of a result, named in the SI inputs: the mean pressure
-    and the modulus it is measured against, and the likely slip."""
+def slip_warnings(sc, load, contact_fraction, j_plus, full_contact=False) -> list:
+    """`viscosine.protocol.unit_slips` of a result, worded in the units the point was given in.
+
+    ``sc``: the `SIScales` of an SI point, or their description (`SIScales.describe`: the
+    ``si`` of a command-line point), and the slip is named in the SI inputs (the mean pressure
+    and the modulus it is measured against, and the likely slip); None: a dimensionless point,
+    the conventions' wording (`viscosine.protocol.slip_warnings`).
+    """
+    if sc is None:
+        return protocol.slip_warnings(load, contact_fraction, j_plus, full_contact)
     found = protocol.unit_slips(load, contact_fraction, j_plus, full_contact)
-    p, e = load * sc.estar, sc.E_ref
-    what = "E0" if sc.ratio is not None else "E_ref (the relaxed modulus)"
+    if isinstance(sc, SIScales):
+        estar, e, solid = sc.estar, sc.E_ref, sc.ratio is not None
+    else:  # the description: its plane-strain modulus, E_ref, and a ratio for the solid only
+        estar, e, solid = sc["plane_strain_modulus"], sc["E_ref"], sc.get("ratio") is not None
+    p = load * estar
+    what = "E0" if solid else "E_ref (the relaxed modulus)"
     out = []
     if "strain" in found:
         out.append(f"a mean pressure of {p:.3g} Pa with {what} = {e:.3g} Pa is "

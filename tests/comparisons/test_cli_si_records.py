@@ -75,3 +75,34 @@ def test_a_unit_slip_is_said_in_the_si_inputs(solver, capsys):
     plain, _ = _record(capsys, "point", "--solver", solver, "--load", repr(rec["load"]),
                        "--speed", repr(rec["speed"]))
     assert any(w.startswith("p̃∞ = ") and "sliver" in w for w in plain["warnings"])
+
+
+def test_a_surface_record_says_its_unit_slip_in_the_units_given(capsys):
+    """A surface point 1.7 × above the glassy modulus: its record carries the slip as the
+    line's does, in SI under --units SI (as bem.solve_surface_si says it), in the conventions'
+    groups otherwise, and the command line prints it."""
+    import bem
+    load, nu, h = 5.0, 0.5, 1e-4   # p̃∞ J(0+) = 5/3
+    pressure = load * 1e6 / (1 - nu ** 2)
+    rec, err = _record(capsys, "point", "--solver", "bem", "--surface", "bisinusoid", *SI,
+                       "--tau-creep", "0.01", "--load", repr(pressure), "--speed", "0.05",
+                       "--nodes", "32")
+    lx = 1e-3
+    from viscosine import ViscosineWarning
+    with pytest.warns(ViscosineWarning, match="plane-strain modulus"):
+        want = bem.solve_surface_si(nu=nu, length=lx, speed=0.05, surface=bem.bisinusoid(
+            2 * 3.141592653589793 * h / lx), E0=1e6, Einf=3e6, tau_creep=0.01,
+            mean_pressure=pressure, nodes=32).warnings
+    slips = [w for w in rec["warnings"] if "plane-strain modulus" in w]
+    assert slips == [w for w in want if "plane-strain modulus" in w] and len(slips) == 1
+    assert slips[0].startswith(f"a mean pressure of {pressure:.3g} Pa with E0 = 1e+06 Pa is 1.7 ×")
+    assert not any("p̃∞" in w for w in rec["warnings"]) and f"point: warning: {slips[0]}" in err
+    plain, err = _record(capsys, "point", "--solver", "bem", "--surface", "bisinusoid",
+                         "--hk", repr(rec["surface"]["hk"]), "--load", repr(rec["load"]),
+                         "--speed", repr(rec["speed"]), "--nodes", "32")
+    slips = [w for w in plain["warnings"] if "plane-strain modulus" in w]
+    assert len(slips) == 1 and slips[0].startswith("p̃∞ = 5 is 1.7 ×") and slips[0] in err
+    # under the limit: no slip
+    calm, _ = _record(capsys, "point", "--solver", "bem", "--surface", "bisinusoid",
+                      "--load", "0.3", "--speed", "1", "--nodes", "32")
+    assert not any("plane-strain modulus" in w or "sliver" in w for w in calm["warnings"])
