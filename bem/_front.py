@@ -12,7 +12,7 @@ from viscosine import si, table
 from viscosine.checks import real, reals
 
 from . import _solver, _surface_solver
-from ._accepted import ACCEPTED, validate
+from ._accepted import ACCEPTED, TERM_MIN, validate
 from ._inputs import Prony, SampledProfile
 from ._layer import Layer
 from ._surface import sampled_surface
@@ -202,7 +202,14 @@ def _si_material(material, sls, problem):
                          "fit whose data name their modulus unit)")
     model = material.in_pascals()
     sc = si.material_scales(E_ref=model.E_r, tau_ref=1.0, **problem)
-    return model, sc, Prony(*model.creep(E_ref=model.E_r, tau_ref=1.0))
+    # a fit's term below the floor (e.g. 1e-14 J(0+)) is dropped, not refused: a term of
+    # weight w moves J* by at most w relative (viscosine.materials.Creep.without_negligible)
+    creep, dropped = model.creep(E_ref=model.E_r, tau_ref=1.0).without_negligible(TERM_MIN)
+    if dropped:
+        warnings.warn(f"{len(dropped)} Prony term(s) below {TERM_MIN:g} J(0+) dropped (largest "
+                      f"weight {dropped[0]:.2g}): J* moves by at most that fraction",
+                      UserWarning, stacklevel=3)
+    return model, sc, Prony(*creep)
 
 
 def solve_surface_si(*, nu, length, speed, heights=None, surface=None, aspect=None,

@@ -317,6 +317,45 @@ def test_mastercurve_end_to_end_writes_each_point_and_resumes(dma, tmp_path):
     assert "other parameters" in other.stderr
 
 
+# ------------------------------------------------------------------------------ negligible terms
+def test_a_fit_with_a_negligible_term_is_solved_and_the_record_lists_it(dma, tmp_path, capsys):
+    """The failure first: the exact creep form of the loss-weighted fit of SPECTRUM holds a term
+    below the BEM's floor 1e-12 J(0+), which bem refuses; mastercurve solves it with the term
+    dropped and says so in the record (count, largest weight)."""
+    model = fit_prony(read_dma(dma), loss_weight=2.0)
+    creep = model.creep(E_ref=model.E_r)
+    jp = creep.J0 - math.fsum(creep.J)
+    assert min(creep.J) < 1e-12 * jp
+    with pytest.raises(ValueError, match=r"is below 1e-12 J\(0\+\)"):
+        bem.validate(material=bem.Prony(*creep))
+    out = tmp_path / "mc"
+    rc, _, err = _run(capsys, *MC, "--material", dma, "--temperatures", "20", "--speeds",
+                      "1e-3", "--loss-weight", "2", "--out", out)
+    assert rc == 0, err
+    doc = json.loads((out / "mastercurve.json").read_text())
+    dropped = doc["parameters"]["material"]["dropped_terms"]
+    small = [j / jp for j in creep.J if j < 1e-12 * jp]
+    assert dropped["count"] == len(small)
+    assert dropped["largest_weight"] == pytest.approx(max(small), rel=1e-9)  # in Pa: new digits
+    assert doc["points"][0]["success"]
+
+
+def test_a_dropped_term_moves_mu_within_its_weight(tmp_path, capsys):
+    """The standard linear solid of E∞/E0 = 3 (creep time 1) plus a relaxation term of 3e-13:
+    the BEM drops its creep term (weight ~1e-13) and agrees with the semi-analytic road on the
+    solid, which is the full series to within that weight, within its own estimate + w."""
+    path = _write_relaxation(tmp_path / "sls_tiny.txt",
+                             Maxwell(1.0, (2.0, 3e-13), (1.0 / 3.0, 1e-2)))
+    b, _ = _point(capsys, "point", "--solver", "bem", "--load", "0.3", "--speed", "1",
+                  "--rtol", "1e-5", "--material", path)
+    a, _ = _point(capsys, "point", "--solver", "analytic", "--load", "0.3", "--speed", "1")
+    w = b["material"]["dropped_terms"]["largest_weight"]
+    assert b["material"]["dropped_terms"]["count"] == 1 and 0.0 < w < 1e-12
+    for key in ("mu", "penetration"):
+        err = abs(b[key] / a[key] - 1.0)
+        assert err <= b["error_estimate"][key] + w, (key, err, b["error_estimate"][key])
+
+
 def test_mastercurve_api_collapses_onto_the_reduced_speed(dma):
     """μ(V, T) = μ(a_T V, T_ref): the Python API, through bem.solve (runner.run)."""
     wlf = WLF(8.86, 101.6, 20.0)

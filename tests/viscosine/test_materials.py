@@ -129,6 +129,21 @@ def test_a_negligible_term_keeps_its_relative_accuracy():
     assert back.E[1] == pytest.approx(1e-10, rel=1e-6)
 
 
+def test_dropping_a_negligible_term_moves_the_compliance_by_at_most_its_weight():
+    """`Creep.without_negligible`: the terms below floor J(0+) go (J0 kept), their weights are
+    returned, and J*(w) moves by at most the weight relative to |J*|, at every frequency."""
+    c = Creep(1.0, (0.5, 3e-3, 1e-2), (1.0, 1e-2, 1e2))
+    jp = c.J0 - math.fsum(c.J)
+    kept, weights = c.without_negligible(3e-2)
+    assert kept == Creep(1.0, (0.5,), (1.0,))
+    assert weights == pytest.approx((1e-2 / jp, 3e-3 / jp), rel=ROUNDOFF)
+    w = np.logspace(-6.0, 6.0, 2001)
+    moved = np.abs(kept.compliance(w) / c.compliance(w) - 1.0)
+    assert moved.max() <= sum(weights) * (1.0 + 1e-12)
+    assert moved.max() > 0.5 * max(weights)             # the bound is reached, not loose
+    assert c.without_negligible(1e-12) == (c, ())       # nothing below: the same series
+
+
 def test_merged_dropped_and_elastic():
     m = Maxwell(2.0, (1.0, 0.0, 0.5, 0.5), (1.0, 7.0, 3.0, 3.0))  # zero term, a repeated time
     c = m.creep()

@@ -128,6 +128,30 @@ class Creep(NamedTuple):
             out += j / (1.0 + 1j * w * tau)
         return out
 
+    def without_negligible(self, floor):
+        """``(series, weights)``: this series without its terms ``J_k < floor J(0+)`` (a
+        solver's floor on a term), ``J0`` kept, and the weights ``J_k/J(0+)`` dropped (largest
+        first; empty when none).
+
+        Dropping a term of weight w = J_k/J(0+) changes J*(w) by J_k i w tau_k/(1 + i w tau_k):
+        by at most w J(0+), i.e. at most w relative to |J*| (|J*| >= Re J* >= J(0+)).  J(0+)
+        grows by J_k, so the floor is applied to the grown J(0+) until no kept term is below.
+        """
+        jp = self.J0 - math.fsum(self.J)
+        keep = list(range(len(self.J)))
+        while True:
+            grown = self.J0 - math.fsum(self.J[k] for k in keep)
+            small = [k for k in keep if 0.0 < self.J[k] < floor * grown]
+            if not small:
+                break
+            keep = [k for k in keep if k not in small]
+        weights = sorted((self.J[k] / jp for k in range(len(self.J))
+                          if k not in keep and self.J[k] > 0.0), reverse=True)
+        if len(keep) == len(self.J):
+            return self, ()
+        return (Creep(self.J0, tuple(self.J[k] for k in keep), tuple(self.tau[k] for k in keep)),
+                tuple(weights))
+
 
 
 @dataclass(frozen=True)
