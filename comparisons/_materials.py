@@ -174,6 +174,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     shift, shift_info = shift_from_options(wlf, shift_table)
     fit_info = curve = model = None
     extra = {}
+    nu = _checked_nu(nu)
     try:
         if form == "creep":
             prony = roads.prony(*vm.read_creep(path, option="prony", data=data))
@@ -188,34 +189,36 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
                 model = vm.read_relaxation(path, data=data)
             elif form in ("dma", "sweeps"):
                 if form == "dma":
-                    curve = _read_dma(vm, path, data, nu)
+                    curve = vm.read_dma(path, data=data, nu=nu)
                     if curve.shear_nu is not None:
                         extra["shear_nu"] = curve.shear_nu
                 else:
-                    sp = _superposed(vm, path, temperature, reference_temperature)
+                    sp = _superposed(vm, path, temperature, reference_temperature, nu, extra)
                     curve, extra["superposition"] = sp.curve, sp.as_dict()
                     extra["temperature"] = sp.reference_temperature
                 model = _fit(vm, curve, fit_options)
                 if si:
                     model = model.in_pascals()
             else:
-                model = _other_form(vm, form, path, extra)
+                model = _other_form(vm, form, path, extra, nu)
                 if si and model.fit is not None:
                     model = model.in_pascals()
             _check_range(model, form)
             terms = len([e for e in model.E if e > 0.0])
             e_ref = model.E_r if (form in FITTED or si) else 1.0
-            prony = roads.prony(*model.creep(E_ref=e_ref, tau_ref=1.0))
+            prony, extra["dropped_terms"] = bem_series(model, e_ref)
             fit_info = _fit_info(model)
         if model is None:
             _check_creep_range(prony)
     except ValueError as exc:
-        raise ValueError(f"{where}: {reason(exc)}") from None
+        raise ValueError(f"{where}: {_nu_reason(exc, nu, form, path)}") from None
     window = model.fit.window if model is not None and model.fit is not None else None
     header = vm.read_window(path, data=data)
     if window is None and header is not None:
         window = header                       # a series written with its data's window
         extra["window_from"] = "the file's '# measured window' line"
+    if extra.get("dropped_terms", 0) is None:
+        del extra["dropped_terms"]
     info = {"form": form, "path": os.path.abspath(path), "sha256": _sha256(data),
             "terms": terms, **references(form, si, e_ref, fit_info),
             "temperature": None, "shift": None, "log10_aT": None,
@@ -235,18 +238,37 @@ _FORM_NAMES = {"creep": "a creep series", "relaxation": "a relaxation series",
                "time": "an E(t) or J(t) table (fitted in time)", "card": "an FE Prony card"}
 
 
-def _read_dma(vm, path, data, nu):
-    """`read_dma` of a --material file; a shear curve without ``nu`` asks for --nu."""
+#: what a shear file holds, as the refusal that asks for --nu names it
+_SHEAR = {"dma": "shear moduli G', G''", "sweeps": "shear isotherms G', G''",
+          "time": "a shear modulus G(t)", "card": "shear moduli G_0, G_i"}
+#: the Poisson ratios --nu may give (the conversion E = 2 (1 + ν) G of shear data)
+NU_ALLOWED = "a Poisson ratio in (-1, 0.5]"
+
+
+def _checked_nu(nu):
+    """--nu as a float in (-1, 0.5], or None; ValueError naming --nu."""
+    if nu is None:
+        return None
+    if not (isinstance(nu, (int, float)) and -1.0 < nu <= 0.5):
+        raise ValueError(f"--nu {nu!r} is not allowed: {NU_ALLOWED}")
+    return float(nu)
+
+
+def _nu_reason(exc, nu, form, path):
+    """What to say of a refusal: one about ν (a shear file without --nu, or an LS-DYNA card
+    whose BULK fixes another ν) in the command line's words; any other as `reason` says it."""
     from viscosine.checks import Refusal
-    try:
-        return vm.read_dma(path, data=data, nu=nu)
-    except Refusal as exc:
-        if exc.name != "nu":
-            raise
-        if nu is None:
-            raise ValueError("it holds shear moduli G', G'': give --nu, the Poisson ratio that "
-                             "turns them into tensile ones (E = 2 (1 + ν) G)") from None
-        raise ValueError(f"--nu {nu!r} is not allowed: {one_line(exc.allowed)}") from None
+    if not (isinstance(exc, Refusal) and exc.name == "nu"):
+        return reason(exc)
+    if nu is None:
+        return (f"it holds {_SHEAR.get(form, 'shear moduli')}: give --nu, {NU_ALLOWED} "
+                "(E = 2 (1 + ν) G)")
+    if form == "card":
+        from viscosine import materials as vm
+        own = vm.card_nu(path)
+        return (f"--nu {nu!r} contradicts the LS-DYNA card's ν = {own:.6g} (from BULK and G0 = "
+                "sum G_i): omit --nu or give that ν")
+    return f"--nu {nu!r} is not allowed: {one_line(exc.allowed)}"
 
 
 def _fit_info(model):
@@ -278,13 +300,14 @@ def _fit_info(model):
 FITTED = ("dma", "sweeps", "time")
 
 
-def _superposed(vm, path, temperature, reference_temperature):
+def _superposed(vm, path, temperature, reference_temperature, nu, extra):
     """Raw isotherms shifted onto their master curve at ``temperature`` (else at
-    ``reference_temperature``, else at the isotherm nearest the middle of the range)."""
+    ``reference_temperature``, else at the isotherm nearest the middle of the range); shear
+    isotherms turned into tensile ones with ``nu`` first (``extra["shear_nu"]``)."""
     sweeps = vm.read_sweeps(path)
     if sweeps.kind == "G":
-        raise ValueError("isotherms of E' and E'' (tensile): this file holds G' and G''; "
-                         "convert with E = 2 (1 + nu) G")
+        sweeps = sweeps.tensile(nu)
+        extra["shear_nu"] = nu
     temps = sweeps.temperatures
     t0 = temperature if temperature is not None else reference_temperature
     if t0 is None:
@@ -300,16 +323,22 @@ def _superposed(vm, path, temperature, reference_temperature):
         raise ValueError(text) from None
 
 
-def _other_form(vm, form, path, extra):
-    """The series of an E(t)/J(t) table (fitted) or of an FE card (read)."""
+def _other_form(vm, form, path, extra, nu):
+    """The series of an E(t)/J(t) table (fitted) or of an FE card (read); shear data turned
+    into tensile with ``nu`` (an LS-DYNA card's own ν: ``nu`` must agree), ``extra["shear_nu"]``
+    the ν used."""
     if form == "time":
         data = vm.read_time_data(path)
         if data.shear:
-            raise ValueError("a tensile E(t) or J(t): this file holds G(t); convert with "
-                             "E = 2 (1 + nu) G")
+            data = data.tensile(nu)
+            extra["shear_nu"] = nu
         return vm.fit_time_data(data)
     extra["card"] = vm.card_form(path)
-    return vm.read_card(path)
+    model = vm.read_card(path, nu=nu)
+    used = vm.card_nu(path, extra["card"], nu=nu)
+    if used is not None:
+        extra["shear_nu"] = used
+    return model
 
 
 def fitted_shift(m: Material):
@@ -376,11 +405,15 @@ def at_temperature(m: Material, shift, shift_info, temperature, option="--wlf") 
         prony = roads.prony(p.J0, p.J, tuple(t * a for t in p.tau))
     else:
         model = model.at_temperature(shift, temperature)
-        prony = roads.prony(*model.creep(E_ref=m.info["E_ref"] or 1.0, tau_ref=1.0))
+        prony, dropped = bem_series(model, m.info["E_ref"] or 1.0)
     window = None if m.window is None else (m.window[0] / a, m.window[1] / a)
     info = {**m.info, "temperature": float(temperature), "shift": shift_info,
             "log10_aT": log_a, "fit": _fit_info(model) if model is not None else None,
             "measured_window": None if window is None else list(window)}
+    if model is not None:
+        info.pop("dropped_terms", None)
+        if dropped is not None:
+            info["dropped_terms"] = dropped
     return Material(info, prony, model, m.curve, window)
 
 
@@ -406,8 +439,29 @@ def from_model(model) -> Material:
             "temperature": model.temperature, "shift": None, "log10_aT": None,
             "fit": fit_info, "units": "SI",
             "measured_window": None if model.fit is None else list(model.fit.window)}
-    return Material(info, roads.prony(*model.creep(E_ref=model.E_r, tau_ref=1.0)), model,
+    prony, dropped = bem_series(model, model.E_r)
+    if dropped is not None:
+        info["dropped_terms"] = dropped
+    return Material(info, prony, model,
                     window=None if model.fit is None else model.fit.window)
+
+
+def bem_series(model, e_ref):
+    """``(bem.Prony, dropped)``: the exact creep form of ``model`` (`Maxwell.creep`, compliances
+    in 1/e_ref, times in 1 s) without the terms below the BEM's floor TERM_MIN J(0+), which it
+    refuses (a fit's negligible term, e.g. 1e-14 J(0+)), and the record's ``dropped_terms``
+    (None when none): their count and largest weight w = J_k/J(0+).  Each moves the compliance
+    J*(ω) by at most w J(0+), at most w relative to |J*| (`Creep.without_negligible`)."""
+    from bem._accepted import TERM_MIN          # the floor the BEM's check applies
+    series, weights = model.creep(E_ref=e_ref, tau_ref=1.0).without_negligible(TERM_MIN)
+    dropped = None
+    if weights:
+        dropped = {"count": len(weights), "largest_weight": weights[0],
+                   "floor": TERM_MIN,
+                   "bound": "each term of weight w = J_k/J(0+) below the BEM's floor was "
+                            "dropped (J0 kept): it moves J*(omega) by at most w J(0+), at most "
+                            "w relative to |J*|"}
+    return roads.prony(*series), dropped
 
 
 def _fit(vm, curve, options):
@@ -460,7 +514,8 @@ def reread(info) -> Material:
     if info.get("form") == "sweeps":          # their master curve, maybe moved by their WLF
         fitted = shift.get("kind") == "WLF fitted to the isotherms"
         base = read(info["path"], temperature=None if fitted else info.get("temperature"),
-                    reference_temperature=shift.get("T_ref") if fitted else None, **as_fitted)
+                    reference_temperature=shift.get("T_ref") if fitted else None,
+                    nu=info.get("shear_nu"), **as_fitted)
         if not fitted:
             return base
         from viscosine import materials as vm

@@ -9,7 +9,8 @@ import numpy as np
 import pytest
 
 from comparisons import cli
-from viscosine.materials import Maxwell, fit_prony, read_dma
+from viscosine.materials import (WLF, Maxwell, fit_prony, isotherm_rows, lognormal_series,
+                                 read_dma, time_rows, write_card)
 
 from conftest import ROUNDOFF
 
@@ -162,6 +163,106 @@ def test_nu_is_asked_for_a_shear_curve_and_refused_where_unused(tensile, shear, 
     assert "--nu 0.4 is not allowed here: without --units SI, only for a layer" in _refused(
         capsys, *POINT, "--material", tensile, "--nu", "0.4")
     assert "--nu is not allowed without --units SI" in _refused(capsys, *POINT, "--nu", "0.4")
+
+
+# ------------------------------------------------------------------------------ shear data
+#: the truth of the shear data below (tensile, MPa, s) and its Poisson ratio: G = E/(2 (1 + ν))
+TRUTH = lognormal_series(1.0, 100.0, centre=-1.0, decades=6.0, per_decade=2.0)
+TO_G = 1.0 / (2.0 * (1.0 + NU))
+SHEAR_TRUTH = Maxwell(TRUTH.E_r * TO_G, tuple(e * TO_G for e in TRUTH.E), TRUTH.theta)
+ISO_WLF = WLF(8.86, 101.6, 20.0)
+SI = ["--units", "SI", "--load", "3e5", "--speed", "1.6e-4", "--wavelength", "1e-3",
+      "--amplitude", "1e-4", "--nu", NU]
+
+
+def _shear_files(here):
+    """The truth as a relaxation series (MPa) and as each kind of shear data (MPa), the way a
+    lab or an FE program writes it: G(t), isotherms of G', G'', an LS-DYNA card (its BULK
+    fixes ν = NU), a pyvisco table of G_0, G_i; the isotherms also as E', E'' (their twin)."""
+    for name, unit in (("truth.txt", 1.0), ("truth_pa.txt", 1e6)):  # MPa; Pa (for SI)
+        (here / name).write_text(f"E_r {TRUTH.E_r * unit!r}\n" + "".join(
+            f"{e * unit!r} {t!r}\n" for e, t in zip(TRUTH.E, TRUTH.theta)))
+    rows = time_rows(SHEAR_TRUTH, np.logspace(-5.0, 3.0, 41))
+    (here / "gt.csv").write_text("time [s],G [MPa]\n" + "".join(f"{t!r},{g!r}\n"
+                                                              for t, g in rows))
+    for name, model, head in (("giso.csv", SHEAR_TRUTH, "G' [MPa],G'' [MPa]"),
+                              ("eiso.csv", TRUTH, "storage [MPa],loss [MPa]")):
+        rows = isotherm_rows(model, ISO_WLF, np.arange(-10.0, 61.0, 10.0),
+                             np.logspace(-1.0, 2.0, 13))
+        (here / name).write_text(f"temperature [degC],frequency [Hz],{head}\n" + "".join(
+            ",".join(repr(v) for v in r) + "\n" for r in rows))
+    write_card(here / "g.lsdyna", TRUTH, "lsdyna", nu=NU)
+    g0 = SHEAR_TRUTH.glassy
+    (here / "g.pyvisco").write_text("i,tau_i,alpha_i,G_0,G_i\n-,s,-,MPa,MPa\n" + "".join(
+        f"{k + 1},{t!r},{g / g0!r},{g0!r},{g!r}\n"
+        for k, (g, t) in enumerate(zip(SHEAR_TRUTH.E, SHEAR_TRUTH.theta))))
+
+
+@pytest.fixture
+def shear_data(here):
+    _shear_files(here)
+    return here
+
+
+@pytest.mark.parametrize("name", ["gt.csv", "g.lsdyna", "g.pyvisco"])
+def test_shear_data_with_nu_give_the_truth_they_were_built_from(shear_data, name, capsys):
+    """G(t) (fitted exactly: the truth's times lie on the fit's grid) and the two shear cards,
+    turned into E = 2 (1 + ν) G by --nu, give the point of the tensile truth."""
+    (want,), _ = _records(capsys, *POINT, "--material", "truth.txt")
+    (got,), _ = _records(capsys, *POINT, "--material", name, "--nu", NU)
+    assert got["material"]["shear_nu"] == pytest.approx(NU, abs=1e-12)
+    for key in ("mu", "penetration", "contact_fraction"):
+        assert got[key] == pytest.approx(want[key], rel=1e-9), key
+
+
+def test_lsdyna_takes_its_nu_from_bulk_and_refuses_another(shear_data, capsys):
+    (rec,), _ = _records(capsys, *POINT, "--material", "g.lsdyna")
+    assert rec["material"]["shear_nu"] == pytest.approx(NU, abs=1e-12)
+    line = _refused(capsys, *POINT, "--material", "g.lsdyna", "--nu", "0.3")
+    assert "--nu 0.3 contradicts the LS-DYNA card's ν = 0.4 (from BULK" in line
+
+
+def test_shear_isotherms_with_nu_are_their_tensile_twin_and_near_the_truth(shear_data, capsys):
+    """Isotherms of G', G'' with --nu: the point of the same isotherms written as E', E''
+    (one factor on every isotherm: the same shifts, the same fit), and within the fit's
+    residual of the truth (SI: both in MPa, so the fitted E_r does not enter the groups)."""
+    at = ["--temperature", "20"]
+    (g,), _ = _records(capsys, *POINT, *at, "--material", "giso.csv", "--nu", NU)
+    (e,), _ = _records(capsys, *POINT, *at, "--material", "eiso.csv")
+    assert g["material"]["shear_nu"] == NU and "shear_nu" not in e["material"]
+    assert g["material"]["superposition"]["wlf"]["C1"] == pytest.approx(
+        e["material"]["superposition"]["wlf"]["C1"], rel=1e-9)
+    for key in ("mu", "penetration"):
+        assert g[key] == pytest.approx(e[key], rel=1e-9), key
+    (gs,), _ = _records(capsys, "point", *SI, "--solver", "bem", "--nodes", "1024", *at,
+                        "--material", "giso.csv")
+    (ts,), _ = _records(capsys, "point", *SI, "--solver", "bem", "--nodes", "1024",
+                        "--material", "truth_pa.txt")
+    assert gs["mu"] == pytest.approx(ts["mu"], rel=2e-3)
+
+
+@pytest.mark.parametrize("name,holds", [("gt.csv", "a shear modulus G(t)"),
+                                        ("giso.csv", "shear isotherms G', G''"),
+                                        ("g.pyvisco", "shear moduli G_0, G_i")])
+def test_shear_data_without_nu_ask_for_it(shear_data, name, holds, capsys):
+    argv = POINT + (["--temperature", "20"] if name == "giso.csv" else [])
+    line = _refused(capsys, *argv, "--material", name)
+    assert line.endswith(f"--material {name}: it holds {holds}: give --nu, a Poisson ratio in "
+                         "(-1, 0.5] (E = 2 (1 + ν) G)") and len(line) <= 160, line
+    assert _refused(capsys, *argv, "--material", name, "--nu", "0.7").endswith(
+        "--nu 0.7 is not allowed: a Poisson ratio in (-1, 0.5]")
+
+
+def test_mastercurve_takes_shear_data_with_its_nu(shear_data, here, capsys):
+    """mastercurve's --nu (required: the problem's) converts the G(t) table too."""
+    mc = [a for a in MC if a not in ("--nu", "0.5")] + ["--nu", NU]
+    for name in ("gt.csv", "truth_pa.txt"):       # MPa in its header; a series in Pa
+        rc, _, err = _run(capsys, *mc, "--material", name, "--out", here / name[:-4])
+        assert rc == 0, err
+    got, want = (json.loads((here / n / "mastercurve.json").read_text())
+                 for n in ("gt", "truth_pa"))
+    assert got["parameters"]["material"]["shear_nu"] == NU
+    assert got["points"][0]["mu"] == pytest.approx(want["points"][0]["mu"], rel=1e-9)
 
 
 # ------------------------------------------------------------------------------ the fit figure

@@ -65,7 +65,7 @@ from ._series import Creep, Maxwell
 from ._temperature import WLF, ShiftTable
 from ._units import PASCALS
 from ._cards import FORMS as CARD_FORMS
-from ._cards import card_form, read_card, write_card
+from ._cards import card_form, card_nu, read_card, write_card
 from ._superposition import Superposition, WLFFit, fit_wlf, shift_table_text, superpose
 from ._sweeps import Sweeps, read_sweeps, write_sweeps
 from ._synthetic import isotherm_rows, lognormal_series, time_rows
@@ -77,8 +77,8 @@ __all__ = ["Creep", "FORMS", "FitReport", "MERGE_RTOL", "MIN_POINTS", "MasterCur
            "read_relaxation", "read_shift_table",
            # raw isotherms, time-domain data, FE cards, the measured window (part 2)
            "CARD_FORMS", "Superposition", "Sweeps", "TimeData", "TimeFitReport", "WLFFit",
-           "card_form", "isotherm_rows", "lognormal_series", "time_rows", "MeasuredWindow",
-           "read_series",
+           "card_form", "card_nu", "isotherm_rows", "lognormal_series", "time_rows",
+           "MeasuredWindow", "read_series",
            "fit_time_data", "fit_wlf", "read_card", "read_sweeps", "read_time_data",
            "read_window", "shift_table_text", "superpose", "write_card", "write_series",
            "write_sweeps"]

@@ -127,7 +127,9 @@ def read_card(path, form=None, *, nu=None) -> Maxwell:
     form : {"ansys", "abaqus", "lsdyna", "pyvisco"}, optional
         Default: told from the file's keywords (`card_form`).
     nu : float, optional
-        Poisson ratio for a shear pyvisco table (the FE cards carry their own).
+        Poisson ratio for a shear pyvisco table; for an LS-DYNA card (whose nu is fixed by
+        BULK and G0) a check: one farther than `NU_AGREE` from the card's is refused; unused by
+        ANSYS and Abaqus (they give the tensile E0).
 
     Returns
     -------
@@ -224,7 +226,40 @@ def _fields(line):
     return [line[i:i + 10].strip() for i in range(0, len(line), 10)]
 
 
+#: how far a given nu may lie from the one an LS-DYNA card implies (BULK and G0) and still be
+#: taken as the same (a ν typed to three decimals): beyond it the input contradicts itself
+NU_AGREE = 1e-3
+
+
 def _lsdyna(path, where, nu):
+    bulk, g0, gi, beta, nu0 = _lsdyna_terms(path, where)
+    if nu is not None and not abs(float(nu) - nu0) <= NU_AGREE:
+        raise bad("nu", nu, f"the LS-DYNA card's own nu = {nu0:.6g} (from BULK = {bulk:.6g} and "
+                  f"G0 = sum G_i = {g0:.6g}) within {NU_AGREE:g}, or None: the card fixes it")
+    factor = 2.0 * (1.0 + nu0)
+    relaxed = math.fsum(g for g, b in zip(gi, beta) if b == 0.0)
+    if not relaxed > 0.0:
+        raise bad("card", where, "a term with BETAI = 0 (the relaxed modulus; without it the "
+                  "material is a fluid)")
+    terms = [(g * factor, 1.0 / b) for g, b in zip(gi, beta) if b > 0.0]
+    return Maxwell(relaxed * factor, tuple(t[0] for t in terms), tuple(t[1] for t in terms))
+
+
+def card_nu(path, form=None, *, nu=None):
+    """The Poisson ratio that turned a shear card's moduli into tensile ones: LS-DYNA's own,
+    (3K - 2 G0)/(2 (3K + G0)) from BULK and G0 = sum G_i; ``nu`` for a pyvisco table of G_0,
+    G_i; None for a tensile card (ANSYS and Abaqus give E0 itself)."""
+    where = str(path)
+    form = form or card_form(path)
+    if form == "lsdyna":
+        return _lsdyna_terms(path, where)[4]
+    if form == "pyvisco" and _pyvisco_kind(path, where) == "G":
+        return nu
+    return None
+
+
+def _lsdyna_terms(path, where):
+    """``(BULK, G0, [G_i], [BETA_i], nu)`` of a *MAT_GENERAL_VISCOELASTIC card."""
     lines = [(n, l) for n, l in _text_lines(path, "card", ()) if not l.lstrip().startswith("$")]
     start = None
     for i, (n, line) in enumerate(lines):
@@ -258,13 +293,16 @@ def _lsdyna(path, where, nu):
     if not (g0 > 0.0 and bulk > 0.0):
         raise bad("card", where, f"BULK > 0 and G_i summing > 0 (BULK {bulk!r}, sum {g0!r})")
     nu0 = (3.0 * bulk - 2.0 * g0) / (2.0 * (3.0 * bulk + g0))
-    factor = 2.0 * (1.0 + nu0)
-    relaxed = math.fsum(g for g, b in zip(gi, beta) if b == 0.0)
-    if not relaxed > 0.0:
-        raise bad("card", where, "a term with BETAI = 0 (the relaxed modulus; without it the "
-                  "material is a fluid)")
-    terms = [(g * factor, 1.0 / b) for g, b in zip(gi, beta) if b > 0.0]
-    return Maxwell(relaxed * factor, tuple(t[0] for t in terms), tuple(t[1] for t in terms))
+    return bulk, g0, gi, beta, nu0
+
+
+def _pyvisco_kind(path, where):
+    """"G" for a pyvisco table of shear moduli (G_0), else "E"."""
+    for _, f in _data_lines(path, "card"):
+        names = [t.strip().lower() for t in f]
+        if "tau_i" in names and "alpha_i" in names:
+            return "G" if "g_0" in names else "E"
+    return "E"
 
 
 def _pyvisco(path, where, nu):

@@ -20,11 +20,12 @@ needs absolute temperatures, and the shift constants come out in the file's unit
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
 from ..checks import bad
+from ._units import poisson
 from ._files import _column_name, _data_lines
 
 #: temperatures closer than this (in the file's unit) are one isotherm
@@ -85,6 +86,19 @@ class Sweeps:
     @property
     def temperatures(self) -> np.ndarray:
         return np.array([iso.temperature for iso in self.isotherms])
+
+    def tensile(self, nu=None) -> "Sweeps":
+        """These isotherms in tensile moduli: shear ones (``kind="G"``) times 2 (1 + nu), the
+        Poisson ratio ``nu`` in (-1, 0.5] taken not to relax (E = 2 (1 + nu) G; the shifts are
+        unchanged: one factor on every isotherm); tensile ones as they are (``nu`` unused)."""
+        if self.kind != "G":
+            return self
+        nu = poisson(nu, f"the shear isotherms of {self.source or 'Sweeps'!r}")
+        f = 2.0 * (1.0 + nu)
+        isos = tuple(replace(i, storage=i.storage * f, loss=i.loss * f) for i in self.isotherms)
+        return replace(self, isotherms=isos, kind="E",
+                       notes=self.notes + (f"shear moduli turned into tensile ones: "
+                                           f"E = 2 (1 + {nu:g}) G",))
 
     def kelvin(self, T):
         """Temperatures T (the file's unit) in kelvin; ValueError when the unit is unknown."""

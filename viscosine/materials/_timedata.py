@@ -29,6 +29,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..checks import bad, real
+from ._units import poisson
 from ._files import _column_name, _data_lines
 from ._series import Maxwell
 
@@ -52,6 +53,15 @@ class TimeData:
     shear: bool = False
     modulus_unit: str | None = None
     source: str | None = None
+
+    def tensile(self, nu=None) -> "TimeData":
+        """These data as E(t): a shear modulus G(t) times 2 (1 + nu), the Poisson ratio ``nu``
+        in (-1, 0.5] taken not to relax (E = 2 (1 + nu) G); tensile data as they are (``nu``
+        unused)."""
+        if not self.shear:
+            return self
+        nu = poisson(nu, f"the shear modulus G(t) of {self.source or 'TimeData'!r}")
+        return replace(self, value=self.value * (2.0 * (1.0 + nu)), shear=False)
 
     @property
     def window(self):
