@@ -162,7 +162,9 @@ def run(args):
         from . import near_transition
         return near_transition.run(100 if args.points is None else args.points,
                                    near_transition.SEED if args.seed is None else args.seed,
-                                   workers=1 if args.workers is None else args.workers)
+                                   workers=1 if args.workers is None else args.workers,
+                                   control="penetration" if args.penetration_control
+                                   else "load")
     if args.accepted:
         from . import accepted
         return accepted.measure(1000 if args.points is None else args.points,

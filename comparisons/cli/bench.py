@@ -40,11 +40,15 @@ def add_parser(sub):
     g.add_argument("--near-transition", action="store_true",
                    help="the BEM just below the full-contact load (1e-8 … 1e-3 below p̃_FC, "
                         "E∞/E0 up to 1e3) through `point --solver bem`, against the "
-                        "semi-analytic road: refused, wrong, CPU, memory (default 100 points; "
-                        "JSON lines in bench-near-transition-S<seed>.jsonl, resumed)")
+                        "semi-analytic road: refused, wrong, CPU, memory (default 100 points, "
+                        "V/V0 half in 1e-3 … 1e4, half in the rest of 1e-30 … 1e30; JSON "
+                        "lines in bench-near-transition-S<seed>.jsonl, resumed)")
     p.add_argument("--seed", type=integer, action=Once, metavar="S",
                    help="seed of the --honesty, --materials, --accepted or --near-transition "
-                        "sample (default 20261123, 20261125, 2024, 20261128)")
+                        "sample (default 20261123, 20261125, 2024, 20261129)")
+    p.add_argument("--penetration-control", action="store_true",
+                   help="with --near-transition: Δ/h = 1 − d given (`point --penetration`) "
+                        "instead of the load")
     p.add_argument("--light", action="store_true",
                    help="with --honesty: light loads, p~/hk log-uniform in 1e-8 … 1e-4")
     p.add_argument("--front-door", action="store_true",
@@ -85,6 +89,9 @@ def run(args):
                        "shares that study's points")
     if args.workers is not None and args.workers < 1:
         raise BadInput(f"--workers {args.workers} is not allowed: an integer ≥ 1")
+    if args.penetration_control and not args.near_transition:
+        raise BadInput("--penetration-control is not allowed without --near-transition: it is "
+                       "a mode of that study")
     if args.cheap and not args.accepted:
         raise BadInput("--cheap is not allowed without --accepted: it is a mode of that study")
     for study in ("honesty", "accepted", "near_transition"):
