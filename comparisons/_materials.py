@@ -115,7 +115,8 @@ def shift_from_options(wlf=None, shift_table=None):
 
 def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
          per_decade=None, loss_weight=None, nu=None, si=False, option="--material",
-         reference_temperature=None) -> Material:
+         reference_temperature=None, kind=None, frequency_unit=None, extend=None,
+         vertical=None, method=None) -> Material:
     """Read a material file of any accepted form, at a temperature, for the BEM road.
 
     Parameters
@@ -136,6 +137,12 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     si : bool
         Units of the file: SI (series in Pa and s; a DMA curve in the unit its header names),
         reference modulus E_r [Pa] and 1 s; else the file's own units (module docstring).
+    kind, frequency_unit, extend, vertical, method : optional
+        The readers' and fits' other keywords (`DATA_OPTIONS`; `FLAGS` gives each its
+        command-line flag): ``read_dma(kind=)``, ``read_dma``/``read_sweeps(frequency_unit=)``,
+        ``fit_prony``/``fit_time_data(extend=)``, ``superpose(vertical=, method=)``
+        (``vertical="none"`` is None there).  Each is refused for a file it does not apply to
+        (`APPLIES`).
     reference_temperature : float, optional
         Raw isotherms (``sweeps``) only: the temperature of their master curve (default: the
         ``temperature``, else the isotherm nearest the middle of the measured range).  The
@@ -166,11 +173,10 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         raise ValueError(f"--temperature {temperature!r} is not allowed without --wlf C1 C2 TREF "
                          "or --shift-table FILE: the shift a_T(T) of the material's times")
     fit_options = {"max_residual": max_residual, "per_decade": per_decade,
-                   "loss_weight": loss_weight}
-    given = [k for k, v in fit_options.items() if v is not None]
-    if form not in ("dma", "sweeps") and given:
-        raise ValueError(f"--{given[0].replace('_', '-')} is not allowed here: {FIT_ONLY}, and "
-                         f"{os.path.basename(path)} is {_FORM_NAMES[form]}")
+                   "loss_weight": loss_weight, "extend": extend}
+    data_options = {"kind": kind, "frequency_unit": frequency_unit, "vertical": vertical,
+                    "method": method}
+    _refuse_inapplicable(form, path, {**fit_options, **data_options})
     shift, shift_info = shift_from_options(wlf, shift_table)
     fit_info = curve = model = None
     extra = {}
@@ -189,18 +195,20 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
                 model = vm.read_relaxation(path, data=data)
             elif form in ("dma", "sweeps"):
                 if form == "dma":
-                    curve = vm.read_dma(path, data=data, nu=nu)
+                    curve = vm.read_dma(path, data=data, nu=nu, kind=kind,
+                                        frequency_unit=frequency_unit)
                     if curve.shear_nu is not None:
                         extra["shear_nu"] = curve.shear_nu
                 else:
-                    sp = _superposed(vm, path, temperature, reference_temperature, nu, extra)
+                    sp = _superposed(vm, path, temperature, reference_temperature, nu, extra,
+                                     data_options)
                     curve, extra["superposition"] = sp.curve, sp.as_dict()
                     extra["temperature"] = sp.reference_temperature
                 model = _fit(vm, curve, fit_options)
                 if si:
                     model = model.in_pascals()
             else:
-                model = _other_form(vm, form, path, extra, nu)
+                model = _other_form(vm, form, path, extra, nu, fit_options)
                 if si and model.fit is not None:
                     model = model.in_pascals()
             _check_range(model, form)
@@ -211,6 +219,9 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         if model is None:
             _check_creep_range(prony)
     except ValueError as exc:
+        flagged = _flag_refusal(exc, path, nu, kind)
+        if flagged is not None:
+            raise ValueError(flagged) from None
         raise ValueError(f"{where}: {_nu_reason(exc, nu, form, path)}") from None
     window = model.fit.window if model is not None and model.fit is not None else None
     header = vm.read_window(path, data=data)
@@ -219,6 +230,11 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         extra["window_from"] = "the file's '# measured window' line"
     if extra.get("dropped_terms", 0) is None:
         del extra["dropped_terms"]
+    read_options = {k: v for k, v in {**data_options, "extend": extend}.items() if v is not None}
+    if form == "time" and per_decade is not None:  # its report does not say it was given
+        read_options["per_decade"] = per_decade
+    if read_options:                          # as given, for a worker that reads it again
+        extra["read_options"] = read_options
     info = {"form": form, "path": os.path.abspath(path), "sha256": _sha256(data),
             "terms": terms, **references(form, si, e_ref, fit_info),
             "temperature": None, "shift": None, "log10_aT": None,
@@ -235,7 +251,51 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
 
 #: a material file's form, as a refusal names it
 _FORM_NAMES = {"creep": "a creep series", "relaxation": "a relaxation series",
-               "time": "an E(t) or J(t) table (fitted in time)", "card": "an FE Prony card"}
+               "time": "an E(t) or J(t) table (fitted in time)", "card": "an FE Prony card",
+               "dma": "a DMA master curve", "sweeps": "raw isotherms"}
+
+#: the readers' and fits' keywords besides the fit options of `operating_point.FIT_OPTIONS`
+DATA_OPTIONS = ("kind", "frequency_unit", "extend", "vertical", "method")
+#: the files each option of a --material file applies to (refused for the others)
+APPLIES = {"max_residual": ("dma", "sweeps"), "loss_weight": ("dma", "sweeps"),
+           "per_decade": ("dma", "sweeps", "time"), "extend": ("dma", "sweeps", "time"),
+           "kind": ("dma",), "frequency_unit": ("dma", "sweeps"),
+           "vertical": ("sweeps",), "method": ("sweeps",)}
+#: every keyword of the materials API a --material file goes through, and the command-line
+#: flag that gives it (None: none, `NO_FLAG` says why); the same on point, sweep, mastercurve
+FLAGS = {
+    "read_dma": {"kind": "--material-kind", "nu": "--nu", "frequency_unit": "--frequency-unit",
+                 "data": None},
+    "read_sweeps": {"frequency_unit": "--frequency-unit"},
+    "superpose": {"reference_temperature": "--temperature", "method": "--shift-method",
+                  "vertical": "--vertical-shift"},
+    "fit_prony": {"per_decade": "--per-decade", "extend": "--extend",
+                  "max_residual": "--max-residual", "loss_weight": "--loss-weight"},
+    "read_time_data": {},
+    "fit_time_data": {"per_decade": "--per-decade", "extend": "--extend"},
+    "read_card": {"form": None, "nu": "--nu"},
+}
+#: why a keyword has no flag
+NO_FLAG = {"data": "the file's bytes, which the command line reads once (for its SHA-256)",
+           "form": "told from the card's keywords (TB,PRONY, *VISCOELASTIC, *MAT_076, tau_i "
+                   "and alpha_i): each form needs its own, so a card has exactly one"}
+#: an option's flag (the keyword's name in the refusals of `_refuse_inapplicable`)
+FLAG_OF = {k: v for table in FLAGS.values() for k, v in table.items() if v is not None}
+#: what each file form is, as "it applies to ..." names it
+_APPLIES_TO = {"dma": "a DMA curve", "sweeps": "raw isotherms", "time": "an E(t)/J(t) table"}
+
+
+def _refuse_inapplicable(form, path, options):
+    """Refuse an option given for a file it does not apply to (`APPLIES`), naming the file."""
+    for name, value in options.items():
+        if value is None or form in APPLIES[name]:
+            continue
+        forms = APPLIES[name]
+        names = [_APPLIES_TO[f] for f in forms]
+        why = (FIT_ONLY if forms == ("dma", "sweeps") else "it applies to " +
+               " or ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names))
+        raise ValueError(f"{FLAG_OF[name]} is not allowed here: {why}, and "
+                         f"{os.path.basename(path)} is {_FORM_NAMES[form]}")
 
 
 #: what a shear file holds, as the refusal that asks for --nu names it
@@ -254,9 +314,24 @@ def _checked_nu(nu):
     return float(nu)
 
 
+def _flag_refusal(exc, path, nu=None, kind=None):
+    """The refusal of a flag's value (`FLAG_OF`, not --nu) as ``--flag value: must be ...``,
+    the file by its name only; None for any other error."""
+    from viscosine.checks import Refusal
+    if isinstance(exc, Refusal) and exc.name == "nu" and nu is None and kind == "G":
+        return f"--material-kind G needs --nu, {NU_ALLOWED} (E = 2 (1 + ν) G)"
+    if not (isinstance(exc, Refusal) and exc.name in FLAG_OF and exc.name != "nu"):
+        return None
+    said = reason(exc).replace(repr(str(path)), repr(os.path.basename(path)))
+    if said.endswith(", or None"):            # None: the flag left out
+        said = said[:-len(", or None")] + ", or leave it out"
+    return f"{FLAG_OF[exc.name]} {exc.value}: {said}"
+
+
 def _nu_reason(exc, nu, form, path):
     """What to say of a refusal: one about ν (a shear file without --nu, or an LS-DYNA card
-    whose BULK fixes another ν) in the command line's words; any other as `reason` says it."""
+    whose BULK fixes another ν) or another option in the command line's words; any other as
+    `reason` says it."""
     from viscosine.checks import Refusal
     if not (isinstance(exc, Refusal) and exc.name == "nu"):
         return reason(exc)
@@ -300,11 +375,11 @@ def _fit_info(model):
 FITTED = ("dma", "sweeps", "time")
 
 
-def _superposed(vm, path, temperature, reference_temperature, nu, extra):
+def _superposed(vm, path, temperature, reference_temperature, nu, extra, options):
     """Raw isotherms shifted onto their master curve at ``temperature`` (else at
     ``reference_temperature``, else at the isotherm nearest the middle of the range); shear
     isotherms turned into tensile ones with ``nu`` first (``extra["shear_nu"]``)."""
-    sweeps = vm.read_sweeps(path)
+    sweeps = vm.read_sweeps(path, frequency_unit=options["frequency_unit"])
     if sweeps.kind == "G":
         sweeps = sweeps.tensile(nu)
         extra["shear_nu"] = nu
@@ -314,7 +389,10 @@ def _superposed(vm, path, temperature, reference_temperature, nu, extra):
         t0 = float(temps[min(range(temps.size),
                              key=lambda i: abs(temps[i] - 0.5 * (temps[0] + temps[-1])))])
     try:
-        return vm.superpose(sweeps, t0)
+        how = {k: options[k] for k in ("method", "vertical") if options[k] is not None}
+        if how.get("vertical") == "none":
+            how["vertical"] = None
+        return vm.superpose(sweeps, t0, **how)
     except ValueError as exc:
         text = one_line(exc)
         if text.startswith("reference_temperature="):
@@ -323,7 +401,7 @@ def _superposed(vm, path, temperature, reference_temperature, nu, extra):
         raise ValueError(text) from None
 
 
-def _other_form(vm, form, path, extra, nu):
+def _other_form(vm, form, path, extra, nu, fit_options):
     """The series of an E(t)/J(t) table (fitted) or of an FE card (read); shear data turned
     into tensile with ``nu`` (an LS-DYNA card's own ν: ``nu`` must agree), ``extra["shear_nu"]``
     the ν used."""
@@ -332,7 +410,8 @@ def _other_form(vm, form, path, extra, nu):
         if data.shear:
             data = data.tensile(nu)
             extra["shear_nu"] = nu
-        return vm.fit_time_data(data)
+        return vm.fit_time_data(data, **{k: fit_options[k] for k in ("per_decade", "extend")
+                                         if fit_options[k] is not None})
     extra["card"] = vm.card_form(path)
     model = vm.read_card(path, nu=nu)
     used = vm.card_nu(path, extra["card"], nu=nu)
@@ -511,6 +590,7 @@ def reread(info) -> Material:
         per_decade=fit.get("per_decade") if fit.get("per_decade_chosen_by") == "given" else None,
         loss_weight=fit.get("loss_weight") if fit.get("loss_weight", 1.0) != 1.0 else None,
         si=info.get("units") == "SI")
+    as_fitted.update(info.get("read_options") or {})   # the readers' options as given
     if info.get("form") == "sweeps":          # their master curve, maybe moved by their WLF
         fitted = shift.get("kind") == "WLF fitted to the isotherms"
         base = read(info["path"], temperature=None if fitted else info.get("temperature"),

@@ -204,7 +204,7 @@ def _key(T, V):
 def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                           amplitude, nu, nodes=None, rtol=DEFAULT_RTOL, max_residual=None,
                           per_decade=None, loss_weight=None, done=None,
-                          on_point=None) -> FrictionMasterCurve:
+                          on_point=None, **data_options) -> FrictionMasterCurve:
     """Solve μ at every (temperature, speed) through `bem.solve` (via `runner.run`).
 
     Parameters
@@ -232,6 +232,10 @@ def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressur
     max_residual, per_decade, loss_weight : float, optional
         The DMA fit's bound, times per decade and weight of E'' against E' (DMA files only;
         `viscosine.materials.fit_prony`).
+    **data_options
+        The readers' and fits' other keywords, for a material file (``kind``,
+        ``frequency_unit``, ``extend``, ``vertical``, ``method``:
+        `comparisons._materials.DATA_OPTIONS`, docs/materials.md).
     done : dict, optional
         Rows already solved, keyed by ``(repr(T), repr(V))``: taken as they are.
     on_point : callable, optional
@@ -255,7 +259,7 @@ def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressur
                                mean_pressure=mean_pressure, wavelength=wavelength,
                                amplitude=amplitude, nu=nu, nodes=nodes, rtol=rtol,
                                max_residual=max_residual, per_decade=per_decade,
-                               loss_weight=loss_weight)
+                               loss_weight=loss_weight, **data_options)
     return solve(plan, parameters, done=done, on_point=on_point)
 
 
@@ -275,7 +279,7 @@ def solve(plan, parameters, *, done=None, on_point=None) -> FrictionMasterCurve:
 
 def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength, amplitude, nu,
             nodes=None, rtol=DEFAULT_RTOL, max_residual=None, per_decade=None, loss_weight=None,
-            shift_info=None, reference_temperature=None, with_material=False):
+            shift_info=None, reference_temperature=None, with_material=False, **data_options):
     """Every input checked and every point's spec built, before any solve.
 
     Returns ``([(T, V, log10 a_T, spec), ...], parameters)`` (and, ``with_material``, the
@@ -306,13 +310,16 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
                       if isinstance(shift, vm.WLF) else
                       {"kind": "none", "T_ref": shift.T_ref} if isinstance(shift, NoShift) else
                       {"kind": "table", "T": [shift.T[0], shift.T[-1]]})
+    unknown = sorted(set(data_options) - set(_materials.DATA_OPTIONS))
+    if unknown:
+        raise TypeError(f"prepare() got an unexpected keyword argument {unknown[0]!r}")
     if isinstance(material, (str, os.PathLike)):
         base = _materials.read(os.fspath(material), max_residual=max_residual,
                                per_decade=per_decade, loss_weight=loss_weight, nu=nu, si=True,
-                               reference_temperature=reference_temperature)
+                               reference_temperature=reference_temperature, **data_options)
     else:
         for k, v in (("max_residual", max_residual), ("per_decade", per_decade),
-                     ("loss_weight", loss_weight)):
+                     ("loss_weight", loss_weight), *data_options.items()):
             if v is not None:
                 raise ValueError(f"{k}={v!r} is not allowed with a Maxwell series: it sets the "
                                  "Prony fit of a DMA file")
@@ -438,7 +445,7 @@ def _raw_isotherms(material) -> bool:
 def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, speeds,
                 mean_pressure, wavelength, amplitude, nu, nodes=None, rtol=None,
                 max_residual=None, per_decade=None, loss_weight=None,
-                reference_temperature=None) -> int:
+                reference_temperature=None, **data_options) -> int:
     """`python -m comparisons mastercurve`: check every input, then solve every point into the
     folder ``out`` (made when missing): ``points.csv`` continued when it holds a run with the
     same parameters, then ``mastercurve.json`` and ``mastercurve.png`` (and, for a DMA curve,
@@ -475,7 +482,7 @@ def write_curve(out, material, *, wlf=None, shift_table=None, temperatures, spee
             amplitude=amplitude, nu=nu, nodes=nodes,
             rtol=DEFAULT_RTOL if rtol is None else rtol,
             max_residual=max_residual, per_decade=per_decade, loss_weight=loss_weight,
-            reference_temperature=reference_temperature, with_material=True)
+            reference_temperature=reference_temperature, with_material=True, **data_options)
     except ValueError as exc:  # BadInput too (the runner's and file readers'), re-worded
         text = str(exc).strip().splitlines()[0]
         if text.startswith(("nodes=", "rtol=")) and " is not allowed: " in text:

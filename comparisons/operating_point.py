@@ -63,6 +63,9 @@ PARAMETERS = {
     "max_residual": ("--max-residual", "max_residual"),
     "per_decade": ("--per-decade", "per_decade"),
     "loss_weight": ("--loss-weight", "loss_weight"),
+    "extend": ("--extend", "extend"), "kind": ("--material-kind", "kind"),
+    "frequency_unit": ("--frequency-unit", "frequency_unit"),
+    "vertical": ("--vertical-shift", "vertical"), "method": ("--shift-method", "method"),
     "layer": ("--thickness (d/λ)", "layer"),
     "thickness_over_wavelength": ("--thickness (d/λ)", "thickness_over_wavelength"),
     "foundation": ("--foundation", "foundation"), "nu": ("--nu", "nu"),
@@ -286,7 +289,7 @@ def penetration_clears_layer(penetration, amplitude, thickness):
 # ------------------------------------------------------------------------------ the command line
 #: the options of a --material file (keys of ``material_options``)
 MATERIAL_OPTIONS = ("temperature", "wlf", "shift_table", "max_residual", "per_decade",
-                    "loss_weight")
+                    "loss_weight", "extend", "kind", "frequency_unit", "vertical", "method")
 #: those that steer the Prony fit of a DMA curve (refused for any other material)
 FIT_OPTIONS = ("max_residual", "per_decade", "loss_weight")
 #: why a fit option is refused where no DMA curve is fitted (every door says it)

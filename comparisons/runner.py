@@ -89,9 +89,10 @@ def surface_si_block(rec, info):
 
 # ------------------------------------------------------------------------------ input files
 def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_residual=None,
-                  per_decade=None, loss_weight=None, nu=None, si=False):
+                  per_decade=None, loss_weight=None, nu=None, si=False, **data_options):
     """Read a --material file of any accepted form: ``(description, Material)``
-    (`comparisons._materials.read`; ``nu`` turns a curve of G', G'' into E', E'').
+    (`comparisons._materials.read`; ``nu`` turns shear data into E', E''; ``data_options``
+    its `_materials.DATA_OPTIONS`).
 
     Raises
     ------
@@ -101,7 +102,7 @@ def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_res
     try:
         m = _materials.read(path, temperature=temperature, wlf=wlf, shift_table=shift_table,
                             max_residual=max_residual, per_decade=per_decade,
-                            loss_weight=loss_weight, nu=nu, si=si)
+                            loss_weight=loss_weight, nu=nu, si=si, **data_options)
     except ValueError as exc:
         raise BadInput(_one_line(exc)) from None
     return m.info, m

@@ -214,7 +214,8 @@ def solver_options(p, several):
 
 
 def dma_fit_options(p):
-    """The Prony fit of a DMA --material (point, sweep, mastercurve)."""
+    """The options of reading and fitting a measured --material (point, sweep, mastercurve):
+    one flag per keyword of the materials API (`comparisons._materials.FLAGS`)."""
     p.add_argument("--max-residual", type=number, action=Once, metavar="B",
                    help="DMA --material: the largest relative residual on E' or E'' the Prony "
                         "fit may leave, else refused (default: no bound, the residuals are "
@@ -225,6 +226,23 @@ def dma_fit_options(p):
     p.add_argument("--loss-weight", type=number, action=Once, metavar="W",
                    help="DMA --material: the fit's weight of E'' against E' (default 1: equal; "
                         "0 fits E' alone; large follows E''), >= 0")
+    p.add_argument("--extend", type=number, action=Once, metavar="DECADES",
+                   help="DMA, isotherms, E(t)/J(t) --material: decades of relaxation times the "
+                        "fit adds beyond the data on each side, in [0, 5] (default 1)")
+    p.add_argument("--material-kind", choices=["E", "G"], action=Once, dest="kind",
+                   help="DMA --material: tensile (E', E'') or shear (G', G'', with --nu) moduli "
+                        "(default: the column names say)")
+    p.add_argument("--frequency-unit", choices=["Hz", "rad/s"], action=Once,
+                   help="DMA or isotherms --material: the unit of the frequency column when the "
+                        "header names none (default rad/s; a header's unit must agree)")
+    p.add_argument("--vertical-shift", choices=["none", "temperature", "fitted"], action=Once,
+                   dest="vertical",
+                   help="raw isotherms: no vertical shift (default), T0 rho0/(T rho) (the file "
+                        "states its temperature unit), or fitted per pair")
+    p.add_argument("--shift-method", choices=["moduli", "tan_delta"], action=Once,
+                   dest="method",
+                   help="raw isotherms: horizontal shifts from log E' and log E'' (default) or "
+                        "from log tan δ")
 
 
 def surface_options(p):

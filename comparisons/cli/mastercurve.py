@@ -72,21 +72,22 @@ def add_parser(sub):
 
 def run(args) -> int:
     """0 every point solved, 1 some could not be, 2 bad input."""
-    from .. import mastercurve
+    from .. import _materials, mastercurve
     failed = mastercurve.write_curve(
         "mastercurve" if args.out is None else args.out, _material(args), wlf=args.wlf,
         shift_table=args.shift_table, temperatures=args.temperatures, speeds=args.speeds,
         mean_pressure=args.load, wavelength=args.wavelength, amplitude=args.amplitude,
         nu=args.nu, nodes=args.nodes, rtol=args.rtol, max_residual=args.max_residual,
         reference_temperature=args.reference_temperature,
-        per_decade=args.per_decade, loss_weight=args.loss_weight)
+        per_decade=args.per_decade, loss_weight=args.loss_weight,
+        **{k: getattr(args, k) for k in _materials.DATA_OPTIONS})
     return EXIT_FAILED if failed else EXIT_OK
 
 
 def _material(args):
     """--material FILE (its name), or the standard linear solid of --E0 --Einf --tau-creep or
     --tau-relax (a `viscosine.materials.Maxwell` in Pa and s)."""
-    from .. import mastercurve
+    from .. import _materials, mastercurve
     given = [f"--{k.replace('_', '-')}" for k in _SLS if getattr(args, k) is not None]
     if args.material is not None:
         if given:
@@ -100,9 +101,10 @@ def _material(args):
         if option not in given:
             raise BadInput(f"{option} is missing: the standard linear solid takes --E0 --Einf "
                            "[Pa] with --tau-creep or --tau-relax [s]")
-    for name in op.FIT_OPTIONS:
+    for name in op.FIT_OPTIONS + _materials.DATA_OPTIONS:
         if getattr(args, name) is not None:
-            raise op.refuse(name, op.FIT_ONLY)
+            raise op.refuse(name, op.FIT_ONLY if name in op.FIT_OPTIONS else
+                            "it applies to measured data (--material FILE)")
     if args.tau_creep is not None and args.tau_relax is not None:
         raise BadInput("--tau-relax is not allowed with --tau-creep: one time of the solid "
                        "(the relaxation time is τ E0/Einf)")

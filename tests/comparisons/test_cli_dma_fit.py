@@ -265,6 +265,95 @@ def test_mastercurve_takes_shear_data_with_its_nu(shear_data, here, capsys):
     assert got["points"][0]["mu"] == pytest.approx(want["points"][0]["mu"], rel=1e-9)
 
 
+# ------------------------------------------------------------------------------ keyword <-> flag
+def _parser_of(command):
+    sub = next(a for a in cli.build_parser()._actions if a.dest == "command")
+    return {o: a.dest for a in sub.choices[command]._actions for o in a.option_strings}
+
+
+def test_every_keyword_of_the_materials_api_has_its_flag_and_back():
+    """`_materials.FLAGS` lists every keyword of every reader and fit a --material file goes
+    through (read from their signatures), each with the flag that gives it on point, sweep
+    and mastercurve (the flag's value lands in that keyword) or a reason for none; and every
+    flag that `dma_fit_options` declares is one of those keywords."""
+    import argparse
+    import inspect
+
+    from comparisons import _materials
+    from comparisons.cli._common import dma_fit_options
+    from viscosine import materials as vm
+    for func, table in _materials.FLAGS.items():
+        params = list(inspect.signature(getattr(vm, func)).parameters)[1:]
+        assert set(params) == set(table), func
+        for keyword, flag in table.items():
+            if flag is None:
+                assert _materials.NO_FLAG[keyword], keyword
+                continue
+            for command in ("point", "sweep", "mastercurve"):
+                # mastercurve's temperatures are --temperatures: its isotherms' own is
+                # --reference-temperature
+                f = ("--reference-temperature" if (command, flag) == ("mastercurve",
+                                                                      "--temperature")
+                     else flag)
+                dests = _parser_of(command)
+                assert f in dests, (command, f)
+                want = "reference_temperature" if f == "--reference-temperature" else (
+                    "temperature" if f == "--temperature" else keyword)
+                assert dests[f] == want, (command, f)
+    declared = argparse.ArgumentParser()
+    dma_fit_options(declared)
+    flags = {o: a.dest for a in declared._actions for o in a.option_strings}
+    flags.pop("-h"), flags.pop("--help")
+    assert flags == {f: k for k, f in _materials.FLAG_OF.items()
+                     if f not in ("--nu", "--temperature")}
+
+
+def test_each_new_flag_is_the_python_keyword(shear_data, tensile, here, capsys):
+    """--extend, --material-kind, --frequency-unit, --vertical-shift, --shift-method give the
+    fits the Python API makes with the same keywords."""
+    from viscosine.materials import read_sweeps, superpose
+    (rec,), _ = _records(capsys, *POINT, "--material", tensile, "--extend", "2")
+    want = fit_prony(read_dma(tensile), extend=2.0).fit
+    assert rec["material"]["fit"]["candidates"] == want.candidates
+    assert rec["material"]["read_options"] == {"extend": 2.0}
+    # a curve whose header names no unit: Hz multiplies every frequency by 2 pi
+    bare = _curve(here / "bare.csv", "f,storage,loss")
+    (hz,), _ = _records(capsys, *POINT, "--material", bare, "--frequency-unit", "Hz")
+    assert hz["material"]["measured_window"] == pytest.approx(
+        [2 * np.pi * OMEGA[0], 2 * np.pi * OMEGA[-1]], rel=ROUNDOFF)
+    # storage/loss say no kind: G with --nu is the shear twin of the tensile curve
+    neutral = _curve(here / "neutral.csv", "frequency [rad/s],storage [MPa],loss [MPa]",
+                     1.0 / (2.0 * (1.0 + NU)))
+    (g,), _ = _records(capsys, *POINT, "--material", neutral, "--material-kind", "G",
+                       "--nu", NU)
+    (e,), _ = _records(capsys, *POINT, "--material", tensile)
+    assert g["mu"] == pytest.approx(e["mu"], rel=1e-9) and g["material"]["shear_nu"] == NU
+    (iso,), _ = _records(capsys, *POINT, "--temperature", "20", "--material", "eiso.csv",
+                         "--vertical-shift", "none", "--shift-method", "tan_delta")
+    sp = superpose(read_sweeps("eiso.csv"), 20.0, method="tan_delta")
+    got = iso["material"]["superposition"]
+    assert (got["method"], got["vertical"]) == ("tan_delta", None)
+    assert got["wlf"]["C1"] == sp.wlf.wlf.C1
+
+
+@pytest.mark.parametrize("argv,said", [
+    (["--material", "truth.txt", "--extend", "2"], "--extend is not allowed here: it applies "
+     "to a DMA curve, raw isotherms or an E(t)/J(t) table, and truth.txt is a relaxation "
+     "series"),
+    (["--material", "gt.csv", "--nu", NU, "--shift-method", "tan_delta"], "--shift-method is "
+     "not allowed here: it applies to raw isotherms, and gt.csv is an E(t) or J(t) table"),
+    (["--material", "giso.csv", "--nu", NU, "--temperature", "20", "--material-kind", "E"],
+     "--material-kind is not allowed here: it applies to a DMA curve, and giso.csv is raw "
+     "isotherms"),
+    (["--material", "gt.csv", "--nu", NU, "--extend", "7"],
+     "--extend 7.0: must be decades in [0, 5]"),
+    (["--extend", "1"], "--extend is not allowed here: it applies to a --material file"),
+], ids=["series", "time", "isotherms", "range", "no-material"])
+def test_the_new_flags_are_refused_where_they_do_not_apply(shear_data, argv, said, capsys):
+    line = _refused(capsys, *POINT, *argv)
+    assert said in line and len(line) <= 160, line
+
+
 # ------------------------------------------------------------------------------ the fit figure
 def test_point_and_sweep_write_the_fit_figure_beside_the_command(tensile, here, capsys):
     for argv, command in ((POINT, "point"), (SWEEP, "sweep")):

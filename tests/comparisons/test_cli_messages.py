@@ -131,6 +131,19 @@ CASES += [
     (["suite", "--check", "--workers", "0"], "--workers"),
     (["bench", "--max-log2n", "99"], "--max-log2n"),
     (["report", "--out", "{bad}"], "--out"),
+    # the materials' flags: a value out of range, a choice that is none, a flag without the
+    # data it applies to
+    (PB + ["--material", str(SBR), "--extend", "9"], "--extend"),
+    (PB + ["--material", str(SBR), "--extend", "nan"], "--extend"),
+    (PB + ["--extend", "1"], "--extend"),
+    (PB + ["--material", str(SBR), "--frequency-unit", "kHz"], "--frequency-unit"),
+    (PB + ["--material", str(SBR), "--frequency-unit", "rad/s"], "--frequency-unit"),
+    (PB + ["--material", str(SBR), "--material-kind", "K"], "--material-kind"),
+    (PB + ["--material", str(SBR), "--material-kind", "G"], "--material-kind"),
+    (PB + ["--material", str(SBR), "--vertical-shift", "fitted"], "--vertical-shift"),
+    (PB + ["--material", str(SBR), "--shift-method", "tan"], "--shift-method"),
+    (MC + ["--shift-method", "moduli"], "--shift-method"),
+    (PB + ["--material", str(SBR), "--nu", "0.7"], "--nu"),
 ]
 
 
