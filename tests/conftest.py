@@ -51,3 +51,13 @@ def _working_folder(tmp_path_factory, monkeypatch):
     """Every test runs in a folder of its own: what a command writes beside itself (a DMA fit's
     figure, a bench's JSON lines) never lands in the checkout, and no test sees another's."""
     monkeypatch.chdir(tmp_path_factory.mktemp("cwd"))
+
+
+# ---------------------------------------------------------------------------- shared results
+@pytest.fixture(scope="session")
+def quick_report(tmp_path_factory):
+    """`report --quick` run once for test_report.py and test_report_layers.py (its layer
+    section's runs are among the report's): (report folder, finished process). Read only: a
+    test that changes the folder works on a copy."""
+    import _shared
+    return _shared.quick_report(tmp_path_factory)

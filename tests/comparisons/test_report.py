@@ -2,6 +2,7 @@
 import json
 import os
 import re
+import shutil
 import subprocess
 import sys
 
@@ -14,13 +15,6 @@ from comparisons import report
 def _cli(*args, cwd):
     return subprocess.run([sys.executable, "-m", "comparisons", *args], capture_output=True,
                           text=True, cwd=cwd)
-
-
-@pytest.fixture(scope="module")
-def quick_report(tmp_path_factory):
-    out = tmp_path_factory.mktemp("report")
-    proc = _cli("report", "--quick", "--out", str(out), cwd=out)
-    return out, proc
 
 
 def test_quick_report_writes_every_part(quick_report):
@@ -112,8 +106,9 @@ def test_quick_report_agreement_is_within_the_measured_tolerances(quick_report):
 
 
 @pytest.mark.slow  # about 15 s: the report rebuilt whole
-def test_resume_recomputes_only_what_is_missing(quick_report):
-    out, _ = quick_report
+def test_resume_recomputes_only_what_is_missing(quick_report, tmp_path):
+    out = tmp_path / "report"  # a copy: the quick report is shared (tests/conftest.py)
+    shutil.copytree(quick_report[0], out)
     results = out / "results"
     files = sorted(p for p in results.iterdir() if p.suffix == ".json")
     solver = {p: json.loads(p.read_text())["spec"]["solver"] for p in files}

@@ -118,13 +118,14 @@ def test_where_full_contact_clears_the_foundation_is_the_bems_verdict(foundation
 
 
 @pytest.fixture(scope="module")
-def quick_section(tmp_path_factory):
-    """The section's runs of the quick report (N = 1024, 17 speeds) in a store, and the
-    section written from them."""
+def quick_section(tmp_path_factory, quick_report):
+    """The section's runs of the quick report (N = 1024, 17 speeds): the report's own store,
+    shared with test_report.py (tests/conftest.py), and the section written from them."""
+    reported, proc = quick_report
+    assert proc.returncode == 0, proc.stderr
     out = tmp_path_factory.mktemp("layers")
     cfg = report.config(True, workers=1)
-    store = Store(str(out / "results"))
-    report.execute(cfg, store, False, jobs=rn.layer_runs(cfg.nodes, cfg.layer_speeds))
+    store = Store(str(reported / "results"))
     doc, timings = report.Doc(), {}
     report.layers_section(doc, str(out), store, cfg, timings)
     return out, cfg, store, doc, timings
