@@ -402,3 +402,29 @@ def test_a_gap_at_round_off_gives_no_estimate():
     scalars[-1][1]["gap_depth"] = 0.5 * MIN_GAP_DEPTH
     est, reason, _ = _estimate(scalars, material, 1.0)
     assert reason is not None and "round-off" in reason
+
+
+def test_the_adaptive_mesh_stops_on_four_grids():
+    """Three grids can agree by chance: at E∞/E0 = 1e4 with half a wavelength in contact at the
+    loss peak, the edges' place in their panels leaves Δ/h off by 2.7e-7, 1.4e-7 and 2.2e-7 on
+    512, 1024 and 2048 panels, and 1.5 × the first-order bound of those three is 1.3e-7.  The
+    first stop (N = 2048 at rtol 1e-3) has N = 256 solved for it, and its estimate covers the
+    error; full contact, without edges, stops on three grids."""
+    from analytic.full_contact import modulus
+    ratio, speed = 1e4, 100.0
+    half = 0.5 * modulus(speed, ratio)[0]
+    load = 0.6 * half
+    ref = analytic.solve(load=load, speed=speed, ratio=ratio)
+    q = [bem.solve(load=load, speed=speed, ratio=ratio, nodes=n).penetration
+         for n in (2048, 1024, 512)]
+    three = 1.5 * max(abs(q[0] - q[1]), abs(q[0] - q[2]) / 2, abs(q[1] - q[2]) / 2) / q[0]
+    err = abs(q[0] / ref.penetration - 1)
+    assert three < err  # what three grids alone would have claimed
+    r = bem.solve(load=load, speed=speed, ratio=ratio, rtol=1e-3)
+    assert r.success and r.nodes == 2048, r.message
+    assert [lv[0] for lv in r.levels] == [256, 512, 1024, 2048]
+    assert r.penetration == pytest.approx(q[0], rel=1e-12)
+    for key, e in _true(r, ref).items():
+        assert e <= r.error_estimate[key] <= 1e-3, (key, e, r.error_estimate[key])
+    full = bem.solve(load=2.0 * half, speed=speed, ratio=ratio, rtol=1e-3)
+    assert full.full_contact and [lv[0] for lv in full.levels] == [512, 1024, 2048]

@@ -2,7 +2,7 @@
 own error estimate.
 
 Measured thermoplastics and filled rubbers across their glass transition reach E∞/E0 of 1e4 to
-1e7.  At E∞/E0 = 1e5, 1e6 and 1e8 the BEM (adaptive, rtol 1e-3) is judged against the
+1e7.  At E∞/E0 = 1e4, 1e5, 1e6 and 1e8 the BEM (adaptive, rtol 1e-3) is judged against the
 semi-analytic road at speeds where the creep compliance relaxes (V/V0 = 1), at the loss-tangent
 peak (V/V0 = sqrt(E∞/E0)) under a light load (a contact of a few thousandths of a wavelength)
 and under loads that give a contact of a quarter and of half the wavelength, and in full
@@ -14,6 +14,12 @@ At the loss peak with contacts of a quarter and half a wavelength the stiff trai
 retreats by one panel per active-set step, so the first grid (512 panels) ran out of steps from
 every elastic start; it is now started from coarser grids (64 ... 256 panels), and these cases
 run on the adaptive default like the others.
+
+At E∞/E0 = 1e4 with half a wavelength in contact at the peak, an estimate of the three grids
+512, 1024 and 2048 was 1.8 times short on Δ/h (2.2e-7 off against 1.3e-7): the edges' place in
+their panels made the two coarser grids' errors small by chance.  The adaptive mesh now stops
+only on an estimate of four grids (the first stop, N = 2048, has N = 256 solved for it), and
+1e4 is judged like the others.
 """
 import math
 from decimal import Decimal, getcontext
@@ -24,7 +30,7 @@ import analytic
 import bem
 from analytic.full_contact import modulus
 
-RATIOS = [1e5, 1e6, 1e8]
+RATIOS = [1e4, 1e5, 1e6, 1e8]
 RELATIVE = {"mu": True, "penetration": True, "ka": False, "ke": False}
 
 
