@@ -12,9 +12,11 @@ Where each job lives (a module imports only its own line and the lines below it)
 
 - ``cli/``, ``__main__``: the command line, one module per subcommand (``cli.SUBCOMMANDS``);
   options in, exit status out; no logic of its own beyond the options.
-- ``verify/``, ``suite`` (with ``suite_inputs``, ``suite_export``), ``report`` (with
-  ``report_numbers``, ``report_runs``, ``report_surfaces``), ``crosscheck``, ``mastercurve``,
-  ``points`` (with ``sweep_outputs``, a sweep's table and picture): the jobs a user runs.
+- ``verify/``, ``suite`` (with ``suite_cases``, ``suite_compute``, ``suite_surfaces``,
+  ``suite_inputs``, ``suite_export``), ``report`` (with ``report_doc``, ``report_layers``,
+  ``report_numbers``, ``report_specs``, ``report_runs``, ``report_surfaces``), ``crosscheck``,
+  ``mastercurve``, ``points`` (with ``sweep_outputs``, a sweep's table and picture): the jobs a
+  user runs.
 - ``plots/``: every figure, and the only importer of matplotlib.
 - ``runner``, ``_materials``, ``gate``, ``store``, ``_cluster``: an operating point from the
   options to a checked record, its material, its last line of defence, its stored result, and

@@ -181,9 +181,10 @@ def test_poisson_ratio_drops_out(monkeypatch):
     to 4e-16; bounded by Tamaas's tolerance 1e-10, in case its iterations take another path)."""
     ref = peer.solve(load=0.15, speed=1.0, nodes=64)
     nu = 0.3
-    monkeypatch.setattr(peer, "_NU", nu)
-    monkeypatch.setattr(peer, "_E_TAMAAS", 2.0 * (1.0 + nu))
-    monkeypatch.setattr(peer, "_ESTAR0", 2.0 * (1.0 + nu) / (1.0 - nu * nu))
+    from comparisons.peers import _tamaas_solve as model  # where Tamaas's model is set up
+    monkeypatch.setattr(model, "_NU", nu)
+    monkeypatch.setattr(model, "_E_TAMAAS", 2.0 * (1.0 + nu))
+    monkeypatch.setattr(model, "_ESTAR0", 2.0 * (1.0 + nu) / (1.0 - nu * nu))
     r = peer.solve(load=0.15, speed=1.0, nodes=64)
     for key, value in ref.scalars().items():
         assert getattr(r, key) == pytest.approx(value, rel=1e-10, abs=ROUNDOFF), key
