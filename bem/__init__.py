@@ -23,7 +23,8 @@ The public shape is the semi-analytic road's: ``solve`` returns a `BemResult` wi
 protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
 ``error_estimate``); ``sweep`` tabulates a grid of points; ``solve_si`` takes SI data;
 ``ACCEPTED`` lists the range of every input and why, ``validate`` checks them (``solve`` calls
-it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows.  ``solve(...,
+it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows; ``TERM_MIN`` is
+the smallest creep term over J(0+) a material may hold.  ``solve(...,
 layer=Layer(thickness=k d, foundation=..., nu=...))`` puts a layer on a rigid foundation in place
 of the half-space (``docs/layers.md``); a `Layer` checks its own inputs, and a thin one limits
 the mesh (``_layer.finest_nodes``).
@@ -38,7 +39,7 @@ from viscosine import Fields
 from viscosine.checks import positive_int as _positive_int
 from viscosine.checks import real as _real
 
-from ._accepted import ACCEPTED, MAX_NODES, validate
+from ._accepted import ACCEPTED, MAX_NODES, TERM_MIN, validate
 from ._front import SurfaceSIResult, solve_si, solve_surface_si, sweep
 from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
@@ -81,4 +82,4 @@ __all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES",
            "SurfacePatch", "SurfaceResult", "SurfaceSIResult", "bisinusoid",
            "influence_coefficients", "max_surface_panels", "read_profile", "read_prony",
            "read_surface", "sampled_surface", "self_affine", "solve", "solve_si", "solve_surface",
-           "solve_surface_si", "sweep", "validate", "validate_surface"]
+           "solve_surface_si", "sweep", "validate", "validate_surface", "TERM_MIN"]

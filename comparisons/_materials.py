@@ -531,12 +531,12 @@ def bem_series(model, e_ref):
     refuses (a fit's negligible term, e.g. 1e-14 J(0+)), and the record's ``dropped_terms``
     (None when none): their count and largest weight w = J_k/J(0+).  Each moves the compliance
     J*(ω) by at most w J(0+), at most w relative to |J*| (`Creep.without_negligible`)."""
-    from bem._accepted import TERM_MIN          # the floor the BEM's check applies
-    series, weights = model.creep(E_ref=e_ref, tau_ref=1.0).without_negligible(TERM_MIN)
+    floor = roads.term_floor()                 # the floor the BEM's check applies
+    series, weights = model.creep(E_ref=e_ref, tau_ref=1.0).without_negligible(floor)
     dropped = None
     if weights:
         dropped = {"count": len(weights), "largest_weight": weights[0],
-                   "floor": TERM_MIN,
+                   "floor": floor,
                    "bound": "each term of weight w = J_k/J(0+) below the BEM's floor was "
                             "dropped (J0 kept): it moves J*(omega) by at most w J(0+), at most "
                             "w relative to |J*|"}

@@ -128,6 +128,13 @@ def validate_bem(spec, problem):
     bem.validate(**_bem_kwargs(spec, problem))
 
 
+def term_floor() -> float:
+    """The smallest non-zero creep term over J(0+) the BEM takes (``bem.TERM_MIN``): a fitted
+    series' smaller terms are dropped before it (`comparisons._materials.bem_series`)."""
+    import bem
+    return bem.TERM_MIN
+
+
 def accepted(solver):
     """The road's table of accepted inputs, name → (low, high, what is allowed and why)."""
     return _road(solver).ACCEPTED
