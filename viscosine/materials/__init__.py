@@ -25,15 +25,16 @@ Conventions
   unit.  `Maxwell.creep` takes ``E_ref`` and ``tau_ref`` to return the nondimensional series the
   BEM road expects (compliances in ``1/E_ref``, times in ``tau_ref``).  `Maxwell.in_pascals`
   turns a fit to data whose header named the modulus unit (`PASCALS`) into Pa.
-* Files (all in `viscosine.materials._files`): `read_creep` (a creep series, first line
-  ``J0 <value>``; ``bem.read_prony`` reads it), `read_relaxation` (a relaxation series, first
-  line ``E_r <value>``), `read_dma` (a master curve), `read_shift_table`; `material_form` tells
-  a material file's form (`FORMS`) from its first line.
+* Files (`viscosine.materials._files`; master curves in `_dmafile`): `read_creep` (a creep
+  series, first line ``J0 <value>``; ``bem.read_prony`` reads it), `read_relaxation` (a
+  relaxation series, first line ``E_r <value>``), `read_dma` (a master curve),
+  `read_shift_table`; `material_form` tells a material file's form (`FORMS`) from its first
+  line.
 
 Modules: ``_series`` (the two Prony forms and their interconversion), ``_dma`` (master curves
 and their checks), ``_fit`` (the Prony fit and its report), ``_temperature`` (WLF and shift
-tables), ``_files`` (every file format; ``_text`` cuts the text of a table: separators, decimal
-commas, comments), ``_units`` (the units a file may state); ``_sweeps`` (raw isotherms at several
+tables), ``_files`` and ``_dmafile`` (every file format; ``_text`` cuts the text of a table:
+separators, decimal commas, comments), ``_units`` (the units a file may state); ``_sweeps`` (raw isotherms at several
 temperatures) and ``_superposition`` (their shifts, WLF and master curve), ``_timedata`` (E(t)
 and J(t) fitted directly), ``_cards`` (ANSYS, Abaqus, LS-DYNA cards and pyvisco tables),
 ``_window`` (the measured window written into and read from series files), ``_synthetic`` (data
@@ -58,8 +59,8 @@ J. Am. Chem. Soc. 77, 3701 (1955) (the WLF shift).
 from __future__ import annotations
 
 from ._dma import MERGE_RTOL, MIN_POINTS, MasterCurve
-from ._files import (FORMS, material_form, read_creep, read_dma, read_relaxation,
-                     read_shift_table)
+from ._dmafile import read_dma
+from ._files import FORMS, material_form, read_creep, read_relaxation, read_shift_table
 from ._fit import FitReport, fit_prony
 from ._series import Creep, Maxwell
 from ._temperature import WLF, ShiftTable
