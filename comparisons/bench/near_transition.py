@@ -16,9 +16,11 @@ point without an answer (a non-zero exit, or no record within LIMIT seconds of C
 refused.
 
 Every finished point is appended at once as one JSON line to the output file (default
-``bench-near-transition-S<seed>.jsonl`` in the working folder); a rerun with the same seed and
-file skips the points already there, so an interrupted run loses nothing it finished.  The
-table goes to standard output, progress to standard error.
+``bench-near-transition-S<seed>.jsonl``, under penetration control
+``bench-near-transition-penetration-S<seed>.jsonl``, in the working folder); a rerun with the
+same seed and file skips the points already there, so an interrupted run loses nothing it
+finished.  The table goes to standard output (with the figures of each speed stratum),
+progress to standard error.
 """
 from __future__ import annotations
 
