@@ -18,9 +18,9 @@ Where each job lives (a module imports only its own line and the lines below it)
   ``mastercurve``, ``points`` (with ``sweep_outputs``, a sweep's table and picture): the jobs a
   user runs.
 - ``plots/``: every figure, and the only importer of matplotlib.
-- ``runner``, ``_materials``, ``gate``, ``store``, ``_cluster``: an operating point from the
-  options to a checked record, its material, its last line of defence, its stored result, and
-  where it runs.
+- ``runner``, ``_materials``, ``_material_options``, ``gate``, ``store``, ``_cluster``: an
+  operating point from the options to a checked record, its material (and the flags that read
+  it), its last line of defence, its stored result, and where it runs.
 - ``roads``, ``peers/``: the adapter to ``bem`` and ``analytic``, the only module that calls
   them, and the third codes run as witnesses.
 - ``operating_point``: the one frozen operating point every door builds (its defaults, the

@@ -45,7 +45,9 @@ from typing import NamedTuple
 
 from . import roads
 from ._errors import one_line, reason
-from .operating_point import FIT_ONLY
+from ._material_options import (  # noqa: F401 (the tables, re-exported for the callers)
+    APPLIES, DATA_OPTIONS, FLAG_OF, FLAGS, NO_FLAG, NU_ALLOWED, _checked_nu, _flag_refusal,
+    _nu_reason, _refuse_inapplicable)
 from ._io import file_bytes
 
 TIME_UNIT_SLS = ("speed = V tau_ref k with tau_ref = tau, the creep (retardation) time of the "
@@ -247,103 +249,6 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         m = at_temperature(m, shift, shift_info, temperature,
                            "--wlf" if wlf is not None else f"--shift-table {shift_table}")
     return m
-
-
-#: a material file's form, as a refusal names it
-_FORM_NAMES = {"creep": "a creep series", "relaxation": "a relaxation series",
-               "time": "an E(t) or J(t) table (fitted in time)", "card": "an FE Prony card",
-               "dma": "a DMA master curve", "sweeps": "raw isotherms"}
-
-#: the readers' and fits' keywords besides the fit options of `operating_point.FIT_OPTIONS`
-DATA_OPTIONS = ("kind", "frequency_unit", "extend", "vertical", "method")
-#: the files each option of a --material file applies to (refused for the others)
-APPLIES = {"max_residual": ("dma", "sweeps"), "loss_weight": ("dma", "sweeps"),
-           "per_decade": ("dma", "sweeps", "time"), "extend": ("dma", "sweeps", "time"),
-           "kind": ("dma",), "frequency_unit": ("dma", "sweeps"),
-           "vertical": ("sweeps",), "method": ("sweeps",)}
-#: every keyword of the materials API a --material file goes through, and the command-line
-#: flag that gives it (None: none, `NO_FLAG` says why); the same on point, sweep, mastercurve
-FLAGS = {
-    "read_dma": {"kind": "--material-kind", "nu": "--nu", "frequency_unit": "--frequency-unit",
-                 "data": None},
-    "read_sweeps": {"frequency_unit": "--frequency-unit"},
-    "superpose": {"reference_temperature": "--temperature", "method": "--shift-method",
-                  "vertical": "--vertical-shift"},
-    "fit_prony": {"per_decade": "--per-decade", "extend": "--extend",
-                  "max_residual": "--max-residual", "loss_weight": "--loss-weight"},
-    "read_time_data": {},
-    "fit_time_data": {"per_decade": "--per-decade", "extend": "--extend"},
-    "read_card": {"form": None, "nu": "--nu"},
-}
-#: why a keyword has no flag
-NO_FLAG = {"data": "the file's bytes, which the command line reads once (for its SHA-256)",
-           "form": "told from the card's keywords (TB,PRONY, *VISCOELASTIC, *MAT_076, tau_i "
-                   "and alpha_i): each form needs its own, so a card has exactly one"}
-#: an option's flag (the keyword's name in the refusals of `_refuse_inapplicable`)
-FLAG_OF = {k: v for table in FLAGS.values() for k, v in table.items() if v is not None}
-#: what each file form is, as "it applies to ..." names it
-_APPLIES_TO = {"dma": "a DMA curve", "sweeps": "raw isotherms", "time": "an E(t)/J(t) table"}
-
-
-def _refuse_inapplicable(form, path, options):
-    """Refuse an option given for a file it does not apply to (`APPLIES`), naming the file."""
-    for name, value in options.items():
-        if value is None or form in APPLIES[name]:
-            continue
-        forms = APPLIES[name]
-        names = [_APPLIES_TO[f] for f in forms]
-        why = (FIT_ONLY if forms == ("dma", "sweeps") else "it applies to " +
-               " or ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names))
-        raise ValueError(f"{FLAG_OF[name]} is not allowed here: {why}, and "
-                         f"{os.path.basename(path)} is {_FORM_NAMES[form]}")
-
-
-#: what a shear file holds, as the refusal that asks for --nu names it
-_SHEAR = {"dma": "shear moduli G', G''", "sweeps": "shear isotherms G', G''",
-          "time": "a shear modulus G(t)", "card": "shear moduli G_0, G_i"}
-#: the Poisson ratios --nu may give (the conversion E = 2 (1 + ν) G of shear data)
-NU_ALLOWED = "a Poisson ratio in (-1, 0.5]"
-
-
-def _checked_nu(nu):
-    """--nu as a float in (-1, 0.5], or None; ValueError naming --nu."""
-    if nu is None:
-        return None
-    if not (isinstance(nu, (int, float)) and -1.0 < nu <= 0.5):
-        raise ValueError(f"--nu {nu!r} is not allowed: {NU_ALLOWED}")
-    return float(nu)
-
-
-def _flag_refusal(exc, path, nu=None, kind=None):
-    """The refusal of a flag's value (`FLAG_OF`, not --nu) as ``--flag value: must be ...``,
-    the file by its name only; None for any other error."""
-    from viscosine.checks import Refusal
-    if isinstance(exc, Refusal) and exc.name == "nu" and nu is None and kind == "G":
-        return f"--material-kind G needs --nu, {NU_ALLOWED} (E = 2 (1 + ν) G)"
-    if not (isinstance(exc, Refusal) and exc.name in FLAG_OF and exc.name != "nu"):
-        return None
-    said = reason(exc).replace(repr(str(path)), repr(os.path.basename(path)))
-    if said.endswith(", or None"):            # None: the flag left out
-        said = said[:-len(", or None")] + ", or leave it out"
-    return f"{FLAG_OF[exc.name]} {exc.value}: {said}"
-
-
-def _nu_reason(exc, nu, form, path):
-    """What to say of a refusal: one about ν (a shear file without --nu, or an LS-DYNA card
-    whose BULK fixes another ν) or another option in the command line's words; any other as
-    `reason` says it."""
-    from viscosine.checks import Refusal
-    if not (isinstance(exc, Refusal) and exc.name == "nu"):
-        return reason(exc)
-    if nu is None:
-        return (f"it holds {_SHEAR.get(form, 'shear moduli')}: give --nu, {NU_ALLOWED} "
-                "(E = 2 (1 + ν) G)")
-    if form == "card":
-        from viscosine import materials as vm
-        own = vm.card_nu(path)
-        return (f"--nu {nu!r} contradicts the LS-DYNA card's ν = {own:.6g} (from BULK and G0 = "
-                "sum G_i): omit --nu or give that ν")
-    return f"--nu {nu!r} is not allowed: {one_line(exc.allowed)}"
 
 
 def _fit_info(model):
