@@ -356,6 +356,17 @@ def test_a_dropped_term_moves_mu_within_its_weight(tmp_path, capsys):
         assert err <= b["error_estimate"][key] + w, (key, err, b["error_estimate"][key])
 
 
+def test_solve_si_drops_a_negligible_term_with_a_warning():
+    """bem.solve_si: the solid of E∞/E0 = 3 plus a relaxation term 3e-13 E0 solves (the creep
+    term, ~1e-13 J(0+), dropped with a warning) to the point of the solid within its weight."""
+    base = dict(nu=0.5, wavelength=1e-3, speed=0.05, mean_pressure=2e4, nodes=1024,
+                amplitude=1e-4)
+    ref = bem.solve_si(material=Maxwell(1e6, (2e6,), (0.01 / 3,)), **base)
+    with pytest.warns(UserWarning, match=r"1 Prony term\(s\) below 1e-12 J\(0\+\) dropped"):
+        got = bem.solve_si(material=Maxwell(1e6, (2e6, 3e-7), (0.01 / 3, 1e-4)), **base)
+    _same_point(got.solution.as_dict(), ref.solution.as_dict(), tol=1e-12)
+
+
 def test_mastercurve_api_collapses_onto_the_reduced_speed(dma):
     """μ(V, T) = μ(a_T V, T_ref): the Python API, through bem.solve (runner.run)."""
     wlf = WLF(8.86, 101.6, 20.0)
