@@ -328,6 +328,13 @@ def test_each_new_flag_is_the_python_keyword(shear_data, tensile, here, capsys):
                        "--nu", NU)
     (e,), _ = _records(capsys, *POINT, "--material", tensile)
     assert g["mu"] == pytest.approx(e["mu"], rel=1e-9) and g["material"]["shear_nu"] == NU
+    # --per-decade and --extend reach the time-domain fit too
+    (gt,), _ = _records(capsys, *POINT, "--material", "gt.csv", "--nu", NU, "--per-decade",
+                        "3", "--extend", "0.5")
+    from viscosine.materials import fit_time_data, read_time_data
+    want = fit_time_data(read_time_data("gt.csv").tensile(NU), per_decade=3.0, extend=0.5).fit
+    assert (gt["material"]["fit"]["per_decade"], gt["material"]["fit"]["candidates"]) == (
+        3.0, want.candidates)
     (iso,), _ = _records(capsys, *POINT, "--temperature", "20", "--material", "eiso.csv",
                          "--vertical-shift", "none", "--shift-method", "tan_delta")
     sp = superpose(read_sweeps("eiso.csv"), 20.0, method="tan_delta")
