@@ -70,7 +70,7 @@ def _checked_nu(nu):
     if nu is None:
         return None
     if not (isinstance(nu, (int, float)) and -1.0 < nu <= 0.5):
-        raise ValueError(f"--nu {nu!r} is not allowed: {NU_ALLOWED}")
+        raise ValueError(f"--nu {nu!r}: must be {NU_ALLOWED}")
     return float(nu)
 
 
@@ -103,4 +103,4 @@ def _nu_reason(exc, nu, form, path):
         own = vm.card_nu(path)
         return (f"--nu {nu!r} contradicts the LS-DYNA card's ν = {own:.6g} (from BULK and G0 = "
                 "sum G_i): omit --nu or give that ν")
-    return f"--nu {nu!r} is not allowed: {one_line(exc.allowed)}"
+    return f"--nu {nu!r}: must be {one_line(exc.allowed)}"

@@ -224,7 +224,7 @@ def friction_master_curve(material, *, shift, temperatures, speeds, mean_pressur
     wavelength, amplitude : float
         λ and h of the rigid sinusoid [m].
     nu : float
-        Poisson's ratio (also turns a DMA file of G', G'' into E', E'').
+        Poisson's ratio (also turns a file of shear moduli into tensile ones).
     nodes : int, optional
         A fixed mesh; default: adaptive to ``rtol``.
     rtol : float

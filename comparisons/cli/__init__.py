@@ -4,7 +4,9 @@
                                 [--ratio R] [--hk H] [--nodes N | --rtol T] [--max-nodes M]
                                 [--profile F] [--prony F] [--fields FILE.csv]
                                 [--material F [--max-residual B] [--per-decade K] [--loss-weight W]
-                                 [--nu NU (a DMA curve of G', G'')]
+                                 [--extend D] [--material-kind {E,G}] [--frequency-unit U]
+                                 [--vertical-shift V] [--shift-method M]
+                                 [--nu NU (shear moduli: E = 2 (1 + ν) G)]
                                  [--temperature T (--wlf C1 C2 TREF | --shift-table F)]]
                                 [--units SI --nu NU --wavelength L --amplitude H
                                  (--E0 E --Einf E (--tau-creep S | --tau-relax S) | --material F)]

@@ -202,8 +202,8 @@ def solver_options(p, several):
                               (("--tau-relax",), "s", "relaxation time of the solid, τ E0/Einf "
                                "(instead of --tau-creep)"),
                               (("--nu",), "-", "Poisson's ratio (also, with --thickness, "
-                               "the layer's: its factor S(kd, ν); and with a DMA --material "
-                               "of G', G'', in any units, E = 2 (1 + ν) G)"),
+                               "the layer's: its factor S(kd, ν); and with a --material of "
+                               "shear moduli, in any units, E = 2 (1 + ν) G)"),
                               (("--wavelength",), "m", "λ of the sinusoid (with --surface: "
                                "the cell's side Lx)"),
                               (("--amplitude",), "m", "h of the sinusoid (with --surface "
@@ -376,8 +376,8 @@ def resolve(args, *, load=None, penetration=None, speed=None, files=None, si=Non
                      si=si, layer=layer_options(args, si))
     if (args.nu is not None and si is None and args.thickness is None
             and not (point.get("material") or {}).get("shear_nu")):
-        raise op.refuse("nu", "without --units SI, only for a layer (--thickness) or a DMA "
-                        "--material of G', G'' (E = 2 (1 + ν) G)", args.nu)
+        raise op.refuse("nu", "without --units SI, only for a layer (--thickness) or a "
+                        "--material of shear moduli (E = 2 (1 + ν) G)", args.nu)
     return point
 
 
@@ -485,7 +485,8 @@ def _surface_si(args, files):
 
 def material_options(args):
     """The --material file's options (`operating_point.MATERIAL_OPTIONS`), and ``nu``: --nu
-    turns a DMA curve of G', G'' into E', E'' (also the SI problem's and a layer's ν)."""
+    turns shear data (G', G'', G(t), a shear card) into tensile (also the SI problem's and a
+    layer's ν)."""
     return {**{k: getattr(args, k) for k in op.MATERIAL_OPTIONS}, "nu": args.nu}
 
 

@@ -53,8 +53,8 @@ def add_parser(sub):
     p.add_argument("--amplitude", type=number, required=True, action=Once, metavar="H",
                    help="h of the rigid sinusoid [m]")
     p.add_argument("--nu", type=number, required=True, action=Once, metavar="NU",
-                   help="Poisson's ratio (also turns a DMA --material of G', G'' into E', E'': "
-                        "E = 2 (1 + ν) G)")
+                   help="Poisson's ratio (also turns a --material of shear moduli into tensile "
+                        "ones: E = 2 (1 + ν) G)")
     m = p.add_mutually_exclusive_group()
     m.add_argument("--nodes", type=integer, action=Once, metavar="N",
                    help="a fixed mesh of N panels per period (default: adaptive)")

@@ -158,7 +158,7 @@ def test_a_shear_curve_with_nu_is_its_tensile_twin(tensile, shear, here, capsys)
 def test_nu_is_asked_for_a_shear_curve_and_refused_where_unused(tensile, shear, capsys):
     assert "it holds shear moduli G', G'': give --nu" in _refused(
         capsys, *POINT, "--material", shear)
-    assert "--nu 0.7 is not allowed: a Poisson ratio" in _refused(
+    assert "--nu 0.7: must be a Poisson ratio" in _refused(
         capsys, *POINT, "--material", shear, "--nu", "0.7")
     assert "--nu 0.4 is not allowed here: without --units SI, only for a layer" in _refused(
         capsys, *POINT, "--material", tensile, "--nu", "0.4")
@@ -250,7 +250,7 @@ def test_shear_data_without_nu_ask_for_it(shear_data, name, holds, capsys):
     assert line.endswith(f"--material {name}: it holds {holds}: give --nu, a Poisson ratio in "
                          "(-1, 0.5] (E = 2 (1 + ν) G)") and len(line) <= 160, line
     assert _refused(capsys, *argv, "--material", name, "--nu", "0.7").endswith(
-        "--nu 0.7 is not allowed: a Poisson ratio in (-1, 0.5]")
+        "--nu 0.7: must be a Poisson ratio in (-1, 0.5]")
 
 
 def test_mastercurve_takes_shear_data_with_its_nu(shear_data, here, capsys):
