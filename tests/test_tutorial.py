@@ -2,8 +2,7 @@
 with bash, in a temporary folder; the figures it promises appear.
 
 Every BEM call of the tutorial pins its mesh (``nodes=2048`` / ``--nodes 2048``), so this test
-takes seconds and does not depend on the BEM's default mesh (the layer's section, under a
-second).
+does not depend on the BEM's default mesh; the whole run (about 22 s of CPU) is marked slow.
 """
 import contextlib
 import io
@@ -34,6 +33,7 @@ def test_every_bem_call_pins_its_mesh():
     assert lines and all("--nodes" in ln for ln in lines)
 
 
+@pytest.mark.slow  # about 22 s of CPU: every block of the tutorial, its command lines included
 def test_the_tutorial_runs_as_written(tmp_path, monkeypatch):
     import matplotlib
     matplotlib.use("Agg")
