@@ -321,8 +321,8 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
         for k, v in (("max_residual", max_residual), ("per_decade", per_decade),
                      ("loss_weight", loss_weight), *data_options.items()):
             if v is not None:
-                raise ValueError(f"{k}={v!r} is not allowed with a Maxwell series: it sets the "
-                                 "Prony fit of a DMA file")
+                raise ValueError(f"{k}={v!r} is not allowed with a Maxwell series: it steers "
+                                 "how a material file is read or fitted")
         base = _materials.from_model(material)
     if reference_temperature is not None and base.info["form"] != "sweeps":
         raise ValueError(f"--reference-temperature {reference_temperature!r} is not allowed: "
