@@ -110,6 +110,24 @@ def creep_time(*, E0, Einf, tau=None, tau_creep=None, tau_relax=None) -> float:
     return real(name, value, "a finite creep (retardation) time > 0", lambda v: v > 0.0, unit="s")
 
 
+def _modulus(E0):
+    return real("E0", E0, "a finite modulus > 0", lambda v: v > 0.0, unit="Pa")
+
+
+def _poisson(nu):
+    return real("nu", nu, "a Poisson ratio in (-1, 0.5]", lambda v: -1.0 < v <= 0.5, unit="-")
+
+
+def _amplitude(h):
+    return real("amplitude", h, "a finite length > 0", lambda v: v > 0.0, unit="m")
+
+
+def field_scales(*, E0, nu, amplitude):
+    """(E0 [Pa], ν, h [m]) checked as `scales` checks them: what converts SI fields (pressure
+    over E0/(1 − ν²), lengths over h) when nothing else of the problem is given."""
+    return _modulus(E0), _poisson(nu), _amplitude(amplitude)
+
+
 def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressure=None,
            penetration=None, tau_creep=None, tau_relax=None) -> SIScales:
     """Validate SI inputs (ValueError naming the parameter, its value and what is allowed).
@@ -117,7 +135,7 @@ def scales(*, E0, Einf, tau=None, nu, wavelength, amplitude, speed, mean_pressur
     The solid's time is exactly one of ``tau_creep`` and ``tau_relax`` (`creep_time`; a bare
     ``tau`` is refused); the speed group is V τ k with τ the creep time.
     """
-    E0 = real("E0", E0, "a finite modulus > 0", lambda v: v > 0.0, unit="Pa")
+    E0 = _modulus(E0)
     Einf = real("Einf", Einf, f"a finite modulus > E0 = {E0!r}", lambda v: v > E0, unit="Pa")
     tau = creep_time(E0=E0, Einf=Einf, tau=tau, tau_creep=tau_creep, tau_relax=tau_relax)
     sc = _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration,
@@ -140,9 +158,8 @@ def material_scales(*, E_ref, tau_ref=1.0, nu, wavelength, amplitude, speed, mea
 
 def _scales(E0, tau, nu, wavelength, amplitude, speed, mean_pressure, penetration, *, ratio,
             given_ratio) -> SIScales:
-    nu = real("nu", nu, "a Poisson ratio in (-1, 0.5]", lambda v: -1.0 < v <= 0.5, unit="-")
+    nu, h = _poisson(nu), _amplitude(amplitude)
     lam = real("wavelength", wavelength, "a finite length > 0", lambda v: v > 0.0, unit="m")
-    h = real("amplitude", amplitude, "a finite length > 0", lambda v: v > 0.0, unit="m")
     V = real("speed", speed, "a finite speed >= 0", lambda v: v >= 0.0, unit="m/s")
     if (mean_pressure is None) == (penetration is None):
         raise ValueError(f"mean_pressure={mean_pressure!r}, penetration={penetration!r} is not "

@@ -194,10 +194,7 @@ def si_fields(args):
         raise bad_input(f"--{need[0]}", None, "missing with --units SI",
                         "--E0, --nu and --amplitude to convert SI fields")
     from viscosine import si as si_front
-    try:  # the SI front's own checks of E0, ν and h (the other inputs only stand in)
-        si_front.scales(E0=args.E0, Einf=2.0 * args.E0, tau_creep=1.0, nu=args.nu,
-                        wavelength=1.0, amplitude=args.amplitude, speed=0.0,
-                        penetration=args.amplitude)
+    try:  # the SI front's own checks of E0, ν and h
+        return si_front.field_scales(E0=args.E0, nu=args.nu, amplitude=args.amplitude)
     except ValueError as exc:
         raise op.named(exc) from None
-    return (args.E0, args.nu, args.amplitude)

@@ -600,6 +600,13 @@ def test_si_fields_with_material_and_geometry(tmp_path, capsys):
     assert rc == 2 and err.strip() == ("python -m comparisons verify: --E0: missing with --units "
                                        "SI; allowed: --E0, --nu and --amplitude to convert SI "
                                        "fields")
+    # E0, ν and h are checked by themselves: no stand-in for an option not given (--Einf)
+    common = ("--case", CASE, "--fields", str(path), "--units", "SI", "--nu", str(nu),
+              "--amplitude", str(h), "--rtol", "1e-3", "--no-figures")
+    rc, _, err = _run(capsys, *common, "--E0", "-1", "--out", str(tmp_path / "rep3"))
+    assert rc == 2 and "--E0 -1.0: must be a finite modulus > 0" in err, err
+    rc, _, err = _run(capsys, *common, "--E0", "1e308", "--out", str(tmp_path / "rep4"))
+    assert rc == 1 and "--Einf" not in err, err  # a modulus that large fails the fields
 
 
 # ---------------------------------------------------------------------------- Python API
