@@ -69,7 +69,8 @@ def _gap_solve(grid, free, pfull, x0, rtol, restart, max_inner, keep):
     return sigma, s, its, res / scale * grid.amp, ok, gap
 
 
-def _gap_solve_sep(grid, free, pfull0, p0, sep, x0, rtol, restart, max_inner, keep):
+def _gap_solve_sep(grid, free, pfull0, p0, sep, x0, rtol, restart, max_inner, keep,
+                   settle=True, why=None):
     """Penetration control near full contact: the gaps g of the free panels and the load p.
 
     As `_gap_solve` with p_full = pfull0 + p (``pfull0`` = C^+ y, the full-contact pressure
@@ -81,20 +82,26 @@ def _gap_solve_sep(grid, free, pfull0, p0, sep, x0, rtol, restart, max_inner, ke
     p_FC - p ~ sqrt(s): the primal step's residual of 1e-10 h left the load 4e-10 off, 1e-8 h
     below full contact); the gaps are solved again at the corrected load until the correction
     is at most GAP_SEP_SETTLE of the rms full-contact pressure on the free panels.
-    Returns (sigma_full, s, iterations, residual (scaled like the primal's), ok, gaps)."""
+    ``settle``: a load that has not settled in GAP_SEP_PASSES passes fails the step (ok False);
+    a cold start's inexact steps pass False (the steps solved to tol decide convergence).
+    ``why``: a list that gets the reason of a failure other than the gaps' Krylov solve's.
+    Returns (sigma_full, s, iterations, residual ||A g + (pfull0 + p)_F|| at the returned
+    load and gaps (scaled like the primal's), ok, gaps)."""
     n, m = grid.n, free.size
+    if why is not None:
+        why.clear()
     span = _FreeSpan(grid, free)
-    q, total, _, ok = gmres(span.inverse, span.forward, -np.ones(m), np.zeros(m),
-                            rtol * math.sqrt(m), restart, max_inner, keep=keep)
+    q, total, qres, qok = gmres(span.inverse, span.forward, -np.ones(m), np.zeros(m),
+                                rtol * math.sqrt(m), restart, max_inner, keep=keep)
     qsum = float(q.sum())
     x = np.zeros(m) if x0 is None else np.asarray(x0, dtype=float)
-    p, res = p0, 0.0
+    p, settled, ok, dp = p0, False, qok and qsum < 0.0, 0.0
     base = pfull0[free]
-    for _ in range(GAP_SEP_PASSES if ok and qsum < 0.0 else 0):
+    for _ in range(GAP_SEP_PASSES if ok else 0):
         b = -(base + p)
         bnorm = float(np.linalg.norm(b))
-        x, its, res, ok = gmres(span.inverse, span.forward, b, x, rtol * bnorm, restart,
-                                max_inner, keep=keep)
+        x, its, _, ok = gmres(span.inverse, span.forward, b, x, rtol * bnorm, restart,
+                              max_inner, keep=keep)
         total += its
         if not ok:
             break
@@ -102,16 +109,35 @@ def _gap_solve_sep(grid, free, pfull0, p0, sep, x0, rtol, restart, max_inner, ke
         x += dp * q  # the gaps at the corrected load (the system is linear in p)
         p += dp
         if abs(dp) <= GAP_SEP_SETTLE * bnorm / math.sqrt(m):
+            settled = True
             break
-    ok = ok and qsum < 0.0
+    scale = max(float(np.max(pfull0)) + p, 1e-300)
+    # the residual of the gaps returned, at the load returned (after the last correction)
+    res = float(np.linalg.norm(span.inverse(x) + base + p)) if qok and qsum < 0.0 else 0.0
+    if not qok:
+        _say(why, f"the gap step's response to the load (A q = -1 on {m} free panels) did "
+                  f"not reach tol (residual {qres / math.sqrt(m):.3e} of its right-hand side)")
+    elif not qsum < 0.0:
+        _say(why, f"the gap step's response to the load does not close the gaps (mean "
+                  f"{qsum / m:.3e} >= 0 per unit load: no load gives the separation asked; "
+                  f"the free panels' system is that rounding's, {m} panels)")
+    elif ok and not settled and settle:
+        ok = False
+        _say(why, f"the gap step's load did not settle in {GAP_SEP_PASSES} passes (last "
+                  f"correction {abs(dp) / max(abs(p), 1e-300):.3e} of the load, residual "
+                  f"{res / scale:.3e} h)")
     gap = np.zeros(n)
     gap[free] = x
     sigma = grid.op.pseudo_solve(gap)
     sigma += pfull0
     sigma += p
     sigma[free] = 0.0
-    scale = max(float(np.max(pfull0)) + p, 1e-300)
     return sigma, sep, total, res / scale * grid.amp, ok, gap
+
+
+def _say(why, text):
+    if why is not None:
+        why.append(text)
 
 
 def _gap_step_tol(grid, free_panels):

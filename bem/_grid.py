@@ -296,6 +296,7 @@ class _Mode:
     roundoff: float = ACTIVE_SET_ROUNDOFF  # the active-set rule's allowance
     seen: dict = field(default_factory=dict)  # key of each active set -> its outer step
     retreat: bool = True  # the cold start's sped-up retreat of runs (`_speed_up_retreat`)
+    why: list = field(default_factory=list)  # a gap step's reason for failing (`_gap_solve_sep`)
 
 
 def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, restart,
@@ -355,9 +356,10 @@ def _solve_grid(grid: _Grid, load, sep, active, sigma0, s0, tol, max_outer, rest
         inner.append(its)
         if not ok:
             status = KRYLOV_FAILED
-            message = (f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
-                       + (f" = {relres / grid.scale:.3e} of the window's drop)"
-                          if grid.window else ")"))
+            message = mode.why[0] if mode.why else (
+                f"Krylov solve did not reach tol (residual {relres / grid.amp:.3e} h"
+                + (f" = {relres / grid.scale:.3e} of the window's drop)"
+                   if grid.window else ")"))
             break
         key, verdict = _judge(mode, active, sigma, gap, new, grid, it)
         if verdict is not None:
@@ -401,7 +403,8 @@ def _step(grid: _Grid, active, sigma, s, held, load, sep, mode, tol, restart, ma
             p0 = float(sigma.mean())
             return _with_retry(
                 lambda r: _gap_solve_sep(grid, free, mode.pfull, p0, sep, x0, rtol, r,
-                                         max_inner, _keeps(r, free.size)),
+                                         max_inner, _keeps(r, free.size),
+                                         settle=not mode.loose, why=mode.why),
                 max(restart, min(GAP_STEP_RESTART, free.size)), free.size, widen)
         return _with_retry(
             lambda r: _gap_solve(grid, free, mode.pfull, x0, rtol, r, max_inner,
