@@ -39,8 +39,10 @@ LAG_LAW_SAFETY = 1.5
 #: 2.5e-11 h, the answers lay within their estimates
 MIN_GAP_DEPTH = 20.0
 #: keys of the error estimate: relative for these, absolute for the others
-RELATIVE_KEYS = ("penetration", "tau_f", "mu")
+RELATIVE_KEYS = ("penetration", "tau_f", "mu", "load")
 ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f", "mu")
+#: ... and under penetration control, where the load is an output, this one too
+LOAD_KEY = "load"
 
 
 def _level_scalars(res, grid, profile, material, speed, amp):
@@ -165,7 +167,7 @@ def _unresolved_memory(material, speed, nodes, panels=None):
     return bound
 
 
-def _estimate(scalars, material, speed, layer=None):
+def _estimate(scalars, material, speed, layer=None, load_given=True):
     """A-posteriori error estimate from the last converged grids N/8 (when there), N/4, N/2, N.
 
     Each scalar q is assumed to converge at least at first order in 1/N, so the error of q_N is
@@ -181,7 +183,9 @@ def _estimate(scalars, material, speed, layer=None):
     the grids do not resolve (None when they resolve them all, or when every grid of the run is
     in full contact: no edges, no inner layers).  On a ``layer`` (a `bem.Layer`) the estimate is
     not trusted (a reason) while its thickness d spans fewer than MIN_LAYER_PANELS panels of
-    N/4 in partial contact.
+    N/4 in partial contact.  Under penetration control (``load_given`` False) the load p~ is
+    an output and gets its estimate like the others (relative; its grids' differences and the
+    memory term), not built from those of tau_f and mu.
     """
     if len(scalars) < 3:
         return None, "fewer than three converged grids", None
@@ -197,7 +201,7 @@ def _estimate(scalars, material, speed, layer=None):
         return None, ("the number of contact patches changes with N (" +
                       ", ".join(str(sc["npatch"]) for _, sc in reversed(run)) + ")"), None
     est = {}
-    for k in ESTIMATE_KEYS:
+    for k in ESTIMATE_KEYS + (() if load_given else (LOAD_KEY,)):
         vals = [sc[k] for _, sc in run]  # fine to coarse
         if any(v is None for v in vals):
             est[k] = None

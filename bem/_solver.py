@@ -329,7 +329,8 @@ def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | Non
     run.good = (res, grid)
     values = _level_scalars(res, grid, p.profile, p.material, p.speed, p.amp)
     run.scalars.append((n, values))
-    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed, p.layer)
+    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed, p.layer,
+                                                   load_given=p.load is not None)
     if values.get("use_law"):  # the estimate chose the first-order memory law
         res["friction_dissipation"], res["friction"] = res["friction"], res["friction_law"]
     if p.nodes is None and run.reason is None and _met(run.estimate, values, p.rtol) and \
@@ -390,7 +391,8 @@ def _on_four_grids(p: _Problem, run: _Run, elastic, harmonic) -> bool:
         return False
     values = _level_scalars(res, grid, p.profile, p.material, p.speed, p.amp)
     run.scalars.insert(len(run.scalars) - count, (m, values))
-    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed, p.layer)
+    run.estimate, run.reason, run.note = _estimate(run.scalars, p.material, p.speed, p.layer,
+                                                   load_given=p.load is not None)
     finest = run.scalars[-1][1]
     res_n = run.good[0]
     res_n["friction"] = res_n["friction_law"] if finest.get("use_law") else \

@@ -57,8 +57,8 @@ SAFETY = 3.0
 FLOOR = 2e-11
 #: keys judged (all relative), and those only reported (absolute)
 JUDGED = ("mu", "contact_fraction", "penetration")
-#: ... under penetration control (Δ/h is given, the load is an output: p̃∞ = τ_f/μ, so its
-#: relative error is at most the sum of the record's estimates of τ_f and μ, its estimate here)
+#: ... under penetration control (Δ/h is given, the load is an output, judged against the
+#: record's own estimate of it, ``error_estimate["load"]``)
 JUDGED_PENETRATION = ("mu", "contact_fraction", "load")
 REPORTED = ("ka", "ke")
 #: CPU limit of one point, seconds (RLIMIT_CPU of its process: then it is stopped and counted
@@ -180,8 +180,6 @@ def judge(point, record):
     if not ref.success:
         return {"reference": False}
     est = dict(record.get("error_estimate") or {})
-    if c == "penetration" and est.get("tau_f") is not None and est.get("mu") is not None:
-        est["load"] = est["tau_f"] + est["mu"]
     judged_keys = _judged(point)
     relative = judged_keys
     errors, ratios, right = {}, {}, True
