@@ -123,7 +123,7 @@ def _gap_solve_sep(grid, free, pfull0, p0, sep, x0, rtol, restart, max_inner, ke
                   f"the free panels' system is that rounding's, {m} panels)")
     elif ok and not settled and settle:
         ok = False
-        _say(why, f"the gap step's load did not settle in {GAP_SEP_PASSES} passes (last "
+        _say(why, f"the gap step's load did not settle in {GAP_SEP_PASSES} pass(es) (last "
                   f"correction {abs(dp) / max(abs(p), 1e-300):.3e} of the load, residual "
                   f"{res / scale:.3e} h)")
     gap = np.zeros(n)

@@ -179,7 +179,7 @@ def test_unsettled_penetration_gap_step_is_not_an_answer(monkeypatch):
     assert res["status"] == 0 and res["exact_gaps"]
     monkeypatch.setattr(_gap, "GAP_SEP_PASSES", 1)
     res = S._solve_one(grid, None, sep, [(start, coarse)], 1e-10, 50, 8, 300)
-    assert res["status"] != 0 and "did not settle in 1 passes" in res["message"], res["message"]
+    assert res["status"] != 0 and "did not settle in 1 pass(es)" in res["message"], res["message"]
     r = bem.solve(penetration=1.0 - sep, speed=speed, ratio=ratio)
     if r.success:
         ref = analytic.solve(penetration=1.0 - sep, speed=speed, ratio=ratio)
