@@ -34,9 +34,10 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from ..checks import bad, real
+from ..checks import bad
 from ._files import _data_lines
 from ._series import Maxwell
+from ._units import poisson
 
 FORMS = ("ansys", "abaqus", "lsdyna", "pyvisco")
 
@@ -102,10 +103,7 @@ def lines_form(lines):
 
 def _normalised(e0, g, tau, where, nu=None, shear=False):
     if shear:
-        if nu is None:
-            raise bad("nu", nu, f"a Poisson ratio in (-1, 0.5] for the shear card {where!r} "
-                      "(E = 2 (1 + nu) G)")
-        nu = real("nu", nu, "a Poisson ratio in (-1, 0.5]", lambda v: -1.0 < v <= 0.5)
+        nu = poisson(nu, f"the shear moduli of the card {where!r}")
         e0 = 2.0 * (1.0 + nu) * e0
     if not e0 > 0.0:
         raise bad("card", where, f"an instantaneous modulus > 0 (got {e0!r})")
@@ -233,7 +231,8 @@ NU_AGREE = 1e-3
 
 def _lsdyna(path, where, nu):
     bulk, g0, gi, beta, nu0 = _lsdyna_terms(path, where)
-    if nu is not None and not abs(float(nu) - nu0) <= NU_AGREE:
+    if nu is not None and not abs(poisson(nu, f"the shear moduli of the card {where!r}")
+                                  - nu0) <= NU_AGREE:
         raise bad("nu", nu, f"the LS-DYNA card's own nu = {nu0:.6g} (from BULK = {bulk:.6g} and "
                   f"G0 = sum G_i = {g0:.6g}) within {NU_AGREE:g}, or None: the card fixes it")
     factor = 2.0 * (1.0 + nu0)

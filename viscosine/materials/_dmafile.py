@@ -7,10 +7,10 @@ import re
 
 import numpy as np
 
-from ..checks import bad, real
+from ..checks import bad
 from . import _text
 from ._dma import MasterCurve
-from ._units import PASCALS
+from ._units import PASCALS, poisson
 
 # --------------------------------------------------------------------------
 # DMA master curves: the layouts labs write
@@ -190,11 +190,8 @@ def read_dma(path, *, kind: str | None = None, nu=None, frequency_unit: str | No
     if kind == "E" and nu is not None:
         raise bad("nu", nu, "None with kind='E' (nu converts shear moduli; the file holds "
                   "tensile ones)")
-    if nu is not None:
-        nu = real("nu", nu, "a Poisson ratio in (-1, 0.5]", lambda v: -1.0 < v <= 0.5)
-    if kind == "G" and nu is None:
-        raise bad("nu", nu, "a Poisson ratio in (-1, 0.5] to turn shear moduli into tensile "
-                  "ones (kind='G')")
+    if nu is not None or kind == "G":
+        nu = poisson(nu, "shear moduli (kind='G')")
     src = str(path)
     where = f"dma={src!r} is not allowed:"
     rows = _text.lines(_text.read_text(path, "dma", data))
@@ -267,10 +264,8 @@ def read_dma(path, *, kind: str | None = None, nu=None, frequency_unit: str | No
     kind = kind or named or "E"
     factor = 1.0
     if kind == "G":
-        if nu is None:
-            raise bad("nu", nu, f"a Poisson ratio in (-1, 0.5] to turn the shear moduli of "
-                      f"{src!r} (columns {names[pick['storage']]!r}, {names[pick['loss']]!r}) "
-                      "into tensile ones")
+        nu = poisson(nu, f"the shear moduli of {src!r} (columns {names[pick['storage']]!r}, "
+                     f"{names[pick['loss']]!r})")
         factor = 2.0 * (1.0 + nu)
         notes.append(f"shear moduli turned into tensile ones: E = 2 (1 + {nu:g}) G")
     if "tan_delta" in cols:
