@@ -6,12 +6,13 @@ from __future__ import annotations
 
 import os
 
+from viscosine.checks import shown
+
 from ._errors import one_line, reason
-from .operating_point import FIT_ONLY
 
 #: a material file's form, as a refusal names it
 _FORM_NAMES = {"creep": "a creep series", "relaxation": "a relaxation series",
-               "time": "an E(t) or J(t) table (fitted in time)", "card": "an FE Prony card",
+               "time": "an E(t) or J(t) table", "card": "an FE Prony card",
                "dma": "a DMA master curve", "sweeps": "raw isotherms"}
 
 #: the readers' and fits' keywords besides the fit options of `operating_point.FIT_OPTIONS`
@@ -46,32 +47,38 @@ _APPLIES_TO = {"dma": "a DMA curve", "sweeps": "raw isotherms", "time": "an E(t)
 
 
 def _refuse_inapplicable(form, path, options):
-    """Refuse an option given for a file it does not apply to (`APPLIES`), naming the file."""
+    """Refuse an option given for a file it does not apply to (`APPLIES`), naming the file's
+    form and the forms it applies to (not the file: the line stays short)."""
     for name, value in options.items():
         if value is None or form in APPLIES[name]:
             continue
-        forms = APPLIES[name]
-        names = [_APPLIES_TO[f] for f in forms]
-        why = (FIT_ONLY if forms == ("dma", "sweeps") else "it applies to " +
-               " or ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names))
-        raise ValueError(f"{FLAG_OF[name]} is not allowed here: {why}, and "
-                         f"{os.path.basename(path)} is {_FORM_NAMES[form]}")
+        names = [_APPLIES_TO[f] for f in APPLIES[name]]
+        to = " or ".join([", ".join(names[:-1]), names[-1]] if len(names) > 1 else names)
+        typed = value if isinstance(value, str) else shown(value)
+        raise ValueError(f"{FLAG_OF[name]} {typed}: not for {_FORM_NAMES[form]} "
+                         f"(it applies to {to})")
 
 
 #: what a shear file holds, as the refusal that asks for --nu names it
 _SHEAR = {"dma": "shear moduli G', G''", "sweeps": "shear isotherms G', G''",
           "time": "a shear modulus G(t)", "card": "shear moduli G_0, G_i"}
-#: the Poisson ratios --nu may give (the conversion E = 2 (1 + ν) G of shear data)
-NU_ALLOWED = "a Poisson ratio in (-1, 0.5]"
+
+
+def _nu_allowed():
+    """The Poisson ratios --nu may give (`viscosine.materials` ``POISSON_ALLOWED``)."""
+    from viscosine.materials._units import POISSON_ALLOWED
+    return POISSON_ALLOWED
 
 
 def _checked_nu(nu):
-    """--nu as a float in (-1, 0.5], or None; ValueError naming --nu."""
+    """--nu as a float (`viscosine.materials` ``poisson``), or None; ValueError naming --nu."""
+    from viscosine.materials._units import poisson
     if nu is None:
         return None
-    if not (isinstance(nu, (int, float)) and -1.0 < nu <= 0.5):
-        raise ValueError(f"--nu {nu!r}: must be {NU_ALLOWED}")
-    return float(nu)
+    try:
+        return poisson(nu, "shear moduli")
+    except ValueError:
+        raise ValueError(f"--nu {shown(nu)}: must be {_nu_allowed()}") from None
 
 
 def _flag_refusal(exc, path, nu=None, kind=None):
@@ -79,12 +86,13 @@ def _flag_refusal(exc, path, nu=None, kind=None):
     the file by its name only; None for any other error."""
     from viscosine.checks import Refusal
     if isinstance(exc, Refusal) and exc.name == "nu" and nu is None and kind == "G":
-        return f"--material-kind G needs --nu, {NU_ALLOWED} (E = 2 (1 + ν) G)"
+        return f"--nu is missing: --material-kind G needs it, {_nu_allowed()} (E = 2 (1 + ν) G)"
+    if isinstance(exc, Refusal) and exc.name == "nu" and nu is not None and kind == "E":
+        return f"--nu {shown(nu)}: not with --material-kind E (ν converts shear moduli only)"
     if not (isinstance(exc, Refusal) and exc.name in FLAG_OF and exc.name != "nu"):
         return None
     said = reason(exc).replace(repr(str(path)), repr(os.path.basename(path)))
-    if said.endswith(", or None"):            # None: the flag left out
-        said = said[:-len(", or None")] + ", or leave it out"
+    said = said.replace(", or None", ", or leave it out")  # None: the flag left out
     return f"{FLAG_OF[exc.name]} {exc.value}: {said}"
 
 
@@ -96,7 +104,7 @@ def _nu_reason(exc, nu, form, path):
     if not (isinstance(exc, Refusal) and exc.name == "nu"):
         return reason(exc)
     if nu is None:
-        return (f"it holds {_SHEAR.get(form, 'shear moduli')}: give --nu, {NU_ALLOWED} "
+        return (f"it holds {_SHEAR.get(form, 'shear moduli')}: give --nu, {_nu_allowed()} "
                 "(E = 2 (1 + ν) G)")
     if form == "card":
         from viscosine import materials as vm

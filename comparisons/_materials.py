@@ -46,7 +46,7 @@ from typing import NamedTuple
 from . import roads
 from ._errors import one_line, reason
 from ._material_options import (  # noqa: F401 (the tables, re-exported for the callers)
-    APPLIES, DATA_OPTIONS, FLAG_OF, FLAGS, NO_FLAG, NU_ALLOWED, _checked_nu, _flag_refusal,
+    APPLIES, DATA_OPTIONS, FLAG_OF, FLAGS, NO_FLAG, _checked_nu, _flag_refusal,
     _nu_reason, _refuse_inapplicable)
 from ._io import file_bytes
 
@@ -185,9 +185,13 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
     nu = _checked_nu(nu)
     try:
         if form == "creep":
-            prony = roads.prony(*vm.read_creep(path, option="prony", data=data))
+            creep = vm.read_creep(path, option="prony", data=data)
+            terms = len([j for j in creep.J if j > 0.0])
+            # the hand-off to the BEM drops a term below its floor, as for a fitted series
+            creep, weights = creep.without_negligible(roads.term_floor())
+            extra["dropped_terms"] = _dropped(weights)
+            prony = roads.prony(*creep)
             model = None
-            terms = len(prony.J)
             e_ref = 1.0
             if si:  # compliances in 1/Pa: units of the relaxed modulus 1/J0
                 e_ref = 1.0 / prony.J0
@@ -249,6 +253,14 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
         m = at_temperature(m, shift, shift_info, temperature,
                            "--wlf" if wlf is not None else f"--shift-table {shift_table}")
     return m
+
+
+def problem_nu(m: Material, nu):
+    """The Poisson ratio of the problem read with material ``m``: the ν that turned its shear
+    data into tensile moduli (``shear_nu``: an LS-DYNA card's own, which ``nu`` only had to
+    agree with), else ``nu``; so one ν gives both E = 2 (1 + ν) G and E* = E/(1 - ν²)."""
+    used = m.info.get("shear_nu")
+    return nu if used is None else used
 
 
 def _fit_info(model):
@@ -438,26 +450,23 @@ def bem_series(model, e_ref):
     J*(ω) by at most w J(0+), at most w relative to |J*| (`Creep.without_negligible`)."""
     floor = roads.term_floor()                 # the floor the BEM's check applies
     series, weights = model.creep(E_ref=e_ref, tau_ref=1.0).without_negligible(floor)
-    dropped = None
-    if weights:
-        dropped = {"count": len(weights), "largest_weight": weights[0],
-                   "floor": floor,
-                   "bound": "each term of weight w = J_k/J(0+) below the BEM's floor was "
-                            "dropped (J0 kept): it moves J*(omega) by at most w J(0+), at most "
-                            "w relative to |J*|"}
-    return roads.prony(*series), dropped
+    return roads.prony(*series), _dropped(weights)
+
+
+def _dropped(weights):
+    """The record's ``dropped_terms`` of the weights w = J_k/J(0+) dropped below the BEM's
+    floor (`Creep.without_negligible`), largest first; None when none."""
+    if not weights:
+        return None
+    return {"count": len(weights), "largest_weight": weights[0], "floor": roads.term_floor(),
+            "bound": "each term of weight w = J_k/J(0+) below the BEM's floor was dropped (J0 "
+                     "kept): it moves J*(omega) by at most w J(0+), at most w relative to |J*|"}
 
 
 def _fit(vm, curve, options):
-    given = {k: v for k, v in options.items() if v is not None}
-    try:
-        return vm.fit_prony(curve, **given)
-    except ValueError as exc:
-        text = one_line(exc)
-        for name in options:                  # the option the user typed
-            if text.startswith(name + "="):
-                text = f"--{name.replace('_', '-')} " + text[len(name) + 1:]
-        raise ValueError(text) from None
+    """`fit_prony` with the options given; a refusal of one goes up as it is (`read` words it
+    for the command line through `_flag_refusal`, as the other forms' fits)."""
+    return vm.fit_prony(curve, **{k: v for k, v in options.items() if v is not None})
 
 
 def references(form, si, e_ref, fit_info) -> dict:

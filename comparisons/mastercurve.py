@@ -336,6 +336,7 @@ def prepare(material, *, shift, temperatures, speeds, mean_pressure, wavelength,
         if shift is None:
             raise ValueError("shift=None is not allowed: a material file of raw isotherms (or "
                              "give --wlf or --shift-table)")
+    nu = _materials.problem_nu(base, nu)      # a shear card's own ν: one ν for E and E*
     si = {"nu": nu, "wavelength": wavelength, "amplitude": amplitude}
     groups = op.resolve_si("bem", si, loads=[mean_pressure], speeds=vs, material=base,
                            groups=roads.si_groups)

@@ -442,6 +442,9 @@ def units_si(args, files):
         opts = {k: v for k, v in material_options(args).items() if v is not None}
         files["material"] = runner.read_material(args.material, **opts, si=True)
         material = files["material"][1]
+        # the ν that turned shear data into E (an LS-DYNA card's own) is the problem's too
+        from .. import _materials
+        args.nu = given["nu"] = _materials.problem_nu(material, args.nu)
     several = isinstance(args.speed, list)
 
     def listed(v):

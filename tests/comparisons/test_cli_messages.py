@@ -7,6 +7,7 @@ the contract and the longest message, over all the command lines below.
 """
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -144,12 +145,21 @@ CASES += [
     (PB + ["--material", str(SBR), "--shift-method", "tan"], "--shift-method"),
     (MC + ["--shift-method", "moduli"], "--shift-method"),
     (PB + ["--material", str(SBR), "--nu", "0.7"], "--nu"),
+    # an option for a form it does not apply to, a fit's refusal, --nu with tensile moduli
+    (PB + ["--material", "{relax}", "--loss-weight", "2"], "--loss-weight"),
+    (PB + ["--material", "{relax}", "--per-decade", "2"], "--per-decade"),
+    (PB + ["--material", "{gt}", "--nu", "0.4", "--loss-weight", "2"], "--loss-weight"),
+    (PB + ["--material", "{gt}", "--nu", "0.4", "--max-residual", "0.1"], "--max-residual"),
+    (PB + ["--material", str(SBR), "--per-decade", "0"], "--per-decade"),
+    (PB + ["--material", "{gt}", "--nu", "0.4", "--per-decade", "0"], "--per-decade"),
+    (PB + ["--material", "{gt}", "--nu", "0.4", "--extend", "9"], "--extend"),
+    (PB + ["--material", str(SBR), "--nu", "0.4", "--material-kind", "E"], "--nu"),
 ]
 
 
 def _argv(argv, tmp):
     files = {"bad": tmp / "bad.txt", "empty": tmp / "empty.txt", "missing": tmp / "missing.txt",
-             "table": tmp / "table.csv"}
+             "table": tmp / "table.csv", "relax": tmp / "relax.txt", "gt": tmp / "gt.csv"}
     return [a.format(**{k: str(v) for k, v in files.items()}) for a in argv]
 
 
@@ -157,6 +167,9 @@ def _files(tmp):
     (tmp / "bad.txt").write_text("not a profile\n1 2 3\nfoo\n")
     (tmp / "empty.txt").write_text("")
     (tmp / "table.csv").write_text("temperature,log_aT\n-10,3\n20,0\n80,-4\n")
+    (tmp / "relax.txt").write_text("E_r 1\n2 0.5\n")
+    (tmp / "gt.csv").write_text("time [s],G [MPa]\n" + "".join(    # G(t) = 1 + 2 exp(-t)
+        f"{t!r},{1.0 + 2.0 * math.exp(-t)!r}\n" for t in (10.0 ** (k / 4) for k in range(-12, 9))))
 
 
 def repeated_phrase(text, words=4):

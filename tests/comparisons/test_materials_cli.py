@@ -356,6 +356,24 @@ def test_a_dropped_term_moves_mu_within_its_weight(tmp_path, capsys):
         assert err <= b["error_estimate"][key] + w, (key, err, b["error_estimate"][key])
 
 
+def test_a_creep_file_with_a_negligible_term_is_solved_without_it(tmp_path, capsys):
+    """A creep file (the form --prony takes) given as --material with a term of 3e-13 J(0+):
+    dropped where the series is handed to the BEM, as a fitted series' (it was refused in 400
+    characters): the record lists it and the point is the one of the file without it."""
+    full = tmp_path / "creep_tiny.txt"
+    full.write_text("J0 1\n0.5 1\n1.5e-13 0.1\n")
+    bare = tmp_path / "creep.txt"
+    bare.write_text("J0 1\n0.5 1\n")
+    argv = ["point", "--solver", "bem", "--load", "0.3", "--speed", "1", "--nodes", "1024"]
+    b, _ = _point(capsys, *argv, "--material", full)
+    a, _ = _point(capsys, *argv, "--material", bare)
+    dropped = b["material"]["dropped_terms"]
+    assert dropped["count"] == 1 and dropped["floor"] == bem.TERM_MIN
+    assert dropped["largest_weight"] == pytest.approx(1.5e-13 / 0.5, rel=1e-9)
+    assert b["material"]["terms"] == 2 and "dropped_terms" not in a["material"]
+    _same_point(b, a)
+
+
 def test_solve_si_drops_a_negligible_term_with_a_warning():
     """bem.solve_si: the solid of E∞/E0 = 3 plus a relaxation term 3e-13 E0 solves (the creep
     term, ~1e-13 J(0+), dropped with a warning) to the point of the solid within its weight."""
@@ -432,9 +450,9 @@ BAD = [
     (POINT + ["--material", "{tmp}"], "", "a folder"),
     # the fit, the shift
     (POINT + ["--material", "{sbr}", "--max-residual", "1e-4"], "",
-     "--max-residual 0.0001 is not allowed: a bound the fit meets"),
+     "--max-residual 0.0001: must be a bound the fit meets (its largest residual is "),
     (POINT + ["--material", "{prony}", "--max-residual", "0.1"], "",
-     "--max-residual is not allowed here"),
+     "--max-residual 0.1: not for a creep series (it applies to a DMA curve or raw isotherms)"),
     (POINT + ["--material", "{dma}", "--temperature", "100", "--shift-table", "{table}"], "",
      "--temperature 100.0: must be a temperature inside the shift table [-10.0, 80.0]"),
     (POINT + ["--material", "{dma}", "--temperature", "-90", *SHIFT], "",

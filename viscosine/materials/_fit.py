@@ -408,7 +408,8 @@ def fit_prony(curve: MasterCurve, *, per_decade: float | None = None, extend: fl
         kk_text = "n/a" if kk_range[0] is None else f"{kk_range[0]:.3g}..{kk_range[1]:.3g}"
         p = max(report.worst, key=lambda q: abs(q["residual"]))
         fu, mu = curve.units
-        raise bad("max_residual", bound, f"a bound the fit meets: the best non-negative Prony "
+        raise bad("max_residual", bound, f"a bound the fit meets (its largest residual is "
+                  f"{report.max_residual:.3g}): the best non-negative Prony "
                   f"series ({per_decade:g} times per decade) misses {p['modulus']} at "
                   f"{p['frequency']:.4g} {fu} by {100 * p['residual']:+.3g} % (datum "
                   f"{p['datum']:.4g}, fit {p['fit']:.4g} {mu}".rstrip() + f"); measured E''/E'' "
