@@ -233,16 +233,32 @@ def test_an_lsdyna_card_in_si_has_one_nu_for_e_and_the_plane_strain_modulus(here
     problem's ν (mixing them would move E* by 7e-4)."""
     from viscosine.materials._cards import NU_AGREE
     nu0 = 0.4995
-    write_card(here / "near.lsdyna", TRUTH, "lsdyna", nu=nu0, unit="Pa")
+    in_pa = Maxwell(TRUTH.E_r * 1e6, tuple(e * 1e6 for e in TRUTH.E), TRUTH.theta)
+    write_card(here / "near.lsdyna", in_pa, "lsdyna", nu=nu0, unit="Pa")
     si = [a for a in SI if a not in ("--nu", NU)]
-    recs = [_records(capsys, "point", *si, "--solver", "bem", "--nodes", "1024", "--nu", nu,
-                     "--material", "near.lsdyna")[0][0] for nu in ("0.5", repr(nu0))]
+    recs, warned = [], []
+    for nu in ("0.5", repr(nu0)):
+        (rec,), err = _records(capsys, "point", *si, "--solver", "bem", "--nodes", "1024",
+                               "--nu", nu, "--material", "near.lsdyna")
+        recs.append(rec)
+        warned.append(err)
+    assert warned[0] == warned[1] and "linear theory" not in warned[0]  # a modulus in Pa
     assert abs(0.5 - nu0) <= NU_AGREE
     for rec in recs:
         assert rec["material"]["shear_nu"] == pytest.approx(nu0, abs=1e-12)
         assert rec["si_scales"]["nu"] == rec["material"]["shear_nu"]
     assert recs[0]["si_scales"] == recs[1]["si_scales"]
     assert recs[0]["mu"] == recs[1]["mu"] and recs[0]["load"] == recs[1]["load"]
+    # mastercurve: the same one ν
+    mc = [a for a in MC if a not in ("--nu", "0.5")]
+    docs = []
+    for nu in ("0.5", repr(nu0)):
+        rc, _, err = _run(capsys, *mc, "--nu", nu, "--material", "near.lsdyna", "--out",
+                          here / f"mc{nu}")
+        assert rc == 0, err
+        docs.append(json.loads((here / f"mc{nu}" / "mastercurve.json").read_text()))
+    assert [d["parameters"]["nu"] for d in docs] == [recs[0]["si_scales"]["nu"]] * 2
+    assert docs[0]["points"][0]["mu"] == docs[1]["points"][0]["mu"]
 
 
 def test_shear_isotherms_with_nu_are_their_tensile_twin_and_near_the_truth(shear_data, capsys):
