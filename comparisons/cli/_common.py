@@ -203,7 +203,8 @@ def solver_options(p, several):
                                "(instead of --tau-creep)"),
                               (("--nu",), "-", "Poisson's ratio (also, with --thickness, "
                                "the layer's: its factor S(kd, ν); and with a --material of "
-                               "shear moduli, in any units, E = 2 (1 + ν) G)"),
+                               "shear moduli, in any units, E = 2 (1 + ν) G; an LS-DYNA "
+                               "card's own ν replaces it within 1e-3)"),
                               (("--wavelength",), "m", "λ of the sinusoid (with --surface: "
                                "the cell's side Lx)"),
                               (("--amplitude",), "m", "h of the sinusoid (with --surface "
