@@ -66,13 +66,13 @@ _SHEAR = {"dma": "shear moduli G', G''", "sweeps": "shear isotherms G', G''",
 
 def _nu_allowed():
     """The Poisson ratios --nu may give (`viscosine.materials` ``POISSON_ALLOWED``)."""
-    from viscosine.materials._units import POISSON_ALLOWED
+    from viscosine.materials import POISSON_ALLOWED
     return POISSON_ALLOWED
 
 
 def _checked_nu(nu):
     """--nu as a float (`viscosine.materials` ``poisson``), or None; ValueError naming --nu."""
-    from viscosine.materials._units import poisson
+    from viscosine.materials import poisson
     if nu is None:
         return None
     try:

@@ -64,7 +64,7 @@ from ._files import FORMS, material_form, read_creep, read_relaxation, read_shif
 from ._fit import FitReport, fit_prony
 from ._series import Creep, Maxwell
 from ._temperature import WLF, ShiftTable
-from ._units import PASCALS
+from ._units import PASCALS, POISSON_ALLOWED, poisson
 from ._cards import FORMS as CARD_FORMS
 from ._cards import card_form, card_nu, read_card, write_card
 from ._superposition import Superposition, WLFFit, fit_wlf, shift_table_text, superpose
@@ -74,7 +74,7 @@ from ._timedata import TimeData, TimeFitReport, fit_time_data, read_time_data
 from ._window import MeasuredWindow, read_series, read_window, write_series
 
 __all__ = ["Creep", "FORMS", "FitReport", "MERGE_RTOL", "MIN_POINTS", "MasterCurve", "Maxwell",
-           "PASCALS", "ShiftTable", "WLF", "fit_prony", "material_form", "read_creep", "read_dma",
+           "PASCALS", "POISSON_ALLOWED", "ShiftTable", "WLF", "fit_prony", "material_form", "poisson", "read_creep", "read_dma",
            "read_relaxation", "read_shift_table",
            # raw isotherms, time-domain data, FE cards, the measured window (part 2)
            "CARD_FORMS", "Superposition", "Sweeps", "TimeData", "TimeFitReport", "WLFFit",
