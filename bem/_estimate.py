@@ -38,8 +38,12 @@ LAG_LAW_SAFETY = 1.5
 #: 8e-12 h and 3e-13 h gave ka 1e-6 and 3.5e-5 off, the grids agreeing to 1e-7; at 9e-8 below,
 #: 2.5e-11 h, the answers lay within their estimates
 MIN_GAP_DEPTH = 20.0
-#: keys of the error estimate: relative for these, absolute for the others
+#: keys of the error estimate: relative for these (the grids' differences over |q_N|), absolute
+#: for ka, ke, ke_hat
 RELATIVE_KEYS = ("penetration", "tau_f", "mu", "load")
+#: ... and relative too, but over |q_N| only after the unresolved memory's edge shift is added
+#: to its absolute bound (the shift moves the edges, hence the contact's width)
+AREA_KEY = "contact_fraction"
 ESTIMATE_KEYS = ("contact_fraction", "ka", "ke", "ke_hat", "penetration", "tau_f", "mu")
 #: ... and under penetration control, where the load is an output, this one too
 LOAD_KEY = "load"
@@ -174,8 +178,9 @@ def _estimate(scalars, material, speed, layer=None, load_given=True):
     bounded by |q_N - q_N/2| and, against accidentally small differences (the edges' position in
     their panels makes the errors oscillate: two grids can agree by chance), by
     |q_N - q_N/2^j|/2^(j-1) and |q_N/2^(j-1) - q_N/2^j|/2^(j-1) for j = 2, 3; the estimate is
-    ESTIMATE_SAFETY times the largest (relative to |q_N| for Delta/h, tau_f and mu).  Delta/h
-    adds ESTIMATE_SAFETY times the validity gate's round-off of a gap (1e-12 h), below which no
+    ESTIMATE_SAFETY times the largest (relative to |q_N| for Delta/h, tau_f, mu and the contact
+    fraction, whose bound takes the unresolved memory's term before it is made relative; absolute
+    for ka, ke and ke_hat).  Delta/h adds ESTIMATE_SAFETY times the validity gate's round-off of a gap (1e-12 h), below which no
     separation is certified (measured: 2.6e-13 h at Delta/h = 4.6e-4, where the grids agreed
     to 7e-14 h).  Returns
     (estimate, reason, note): reason is None when the grids resolve the contact, else why the
@@ -212,10 +217,7 @@ def _estimate(scalars, material, speed, layer=None, load_given=True):
             # as zero: the separation is not certified below that, whatever the grids agree to
             # (it shows where Delta/h is small)
             e += ESTIMATE_SAFETY * max(sc["gap_roundoff"] for _, sc in run)
-        if k in RELATIVE_KEYS:
-            scale = abs(vals[0])
-            e = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
-        est[k] = e
+        est[k] = _over(e, vals[0]) if k in RELATIVE_KEYS else e
     reason = None
     n0, a = run[min(2, len(run) - 1)]  # N/4: the coarsest grid every estimate uses
     if a["min_panels"] < MIN_PATCH_PANELS:
@@ -252,7 +254,16 @@ def _estimate(scalars, material, speed, layer=None, load_given=True):
         memo = (f"a memory length w tau_i/(2 pi) spans fewer than {MIN_MEMORY_PANELS:g} "
                 f"panels at N={n0}: its edge shift, up to {shift:.1e}, is in the estimate")
         note = memo if note is None else f"{note}; {memo}"
+    est[AREA_KEY] = _over(est[AREA_KEY], run[0][1][AREA_KEY])
     return est, reason, note
+
+
+def _over(e, value):
+    """An absolute error estimate ``e`` made relative to ``value`` (None stays None)."""
+    if e is None:
+        return None
+    scale = abs(value)
+    return e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
 
 
 def _transition_unsettled(run):
@@ -310,18 +321,20 @@ def _first_order_bound(vals):
 
 
 def _met(estimate, values, rtol):
-    """Whether the estimate meets rtol on mu, Delta/h (relative) and ka, ke (absolute; the
-    contact fraction times pi where several patches leave ka and ke undefined)."""
-    keys = ["mu", "penetration"]
-    keys += ["ka", "ke"] if values["npatch"] == 1 else ["contact_fraction"]
+    """Whether the estimate meets rtol on mu, Delta/h (relative), under penetration control the
+    load (relative, where the estimate has it) and ka, ke (absolute; where several patches leave
+    ka and ke undefined, the contact fraction's absolute estimate times pi: the sum of the
+    patches' ka, on ka's scale).  ``values``: the scalars of the grid the estimate is of."""
+    keys = ["mu", "penetration"] + ([LOAD_KEY] if LOAD_KEY in estimate else [])
+    keys += ["ka", "ke"] if values["npatch"] == 1 else [AREA_KEY]
     for k in keys:
         e = estimate.get(k)
         if e is None:
             if k == "ke" and values["ke"] is None:  # full contact: no ke
                 continue
             return False
-        if k == "contact_fraction":
-            e = math.pi * e
+        if k == AREA_KEY:  # the estimate is relative: back to absolute, on ka's scale
+            e = math.pi * e * abs(values[AREA_KEY])
         if not e <= rtol:
             return False
     return True

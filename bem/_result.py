@@ -127,9 +127,10 @@ class BemResult:
         Caveats (a patch spanning few panels, an unresolved memory layer).
     error_estimate : mapping or None
         The solver's estimate of the discretisation error of each scalar, from its last three
-        or four grids (N/8,) N/4, N/2, N (absolute for contact_fraction, ka, ke, kê; relative for penetration,
-        tau_f, mu, and under penetration control the load, an output there; a key is None where
-        its scalar is), None when the grids cannot support one
+        or four grids (N/8,) N/4, N/2, N (absolute for ka, ke, kê; relative, over the scalar's
+        magnitude, for penetration, tau_f, mu, contact_fraction, and under penetration control
+        the load, an output there; a key is None where its scalar is), None when the grids
+        cannot support one
         (fewer than three converged, a patch under 8 panels, a patch count changing with N).
     rtol : float or None
         The accuracy target of an adaptive mesh; None when ``nodes`` fixed the mesh.

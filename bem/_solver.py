@@ -99,8 +99,9 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         window's grid, which may exceed ``max_nodes``; ``result.diagnostics["window"]`` then
         describes the window).
     rtol : float, optional
-        Adaptive mesh only: the target of the estimated errors, relative for Delta/h and mu,
-        absolute for ka and ke (the contact fraction times pi with several patches).
+        Adaptive mesh only: the target of the estimated errors, relative for Delta/h, mu and,
+        under penetration control, the load; absolute for ka and ke (the contact fraction's
+        absolute error times pi with several patches).
         Default ``viscosine.DEFAULT_RTOL`` (1e-6).
     max_nodes : int, optional
         Adaptive mesh only: the largest periodic grid (a power of two, up to

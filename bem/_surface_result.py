@@ -127,8 +127,8 @@ class SurfaceResult:
         Of σ over the contact area: ``mean``, ``std``, ``skewness``, ``excess_kurtosis``.
     error_estimate : mapping or None
         Estimated discretisation error of each scalar: relative for ``penetration``,
-        ``tau_f``, ``mu`` and ``max_pressure``, absolute for ``contact_fraction`` and
-        ``mu_lateral`` (over μ's scale: the lateral force can vanish).
+        ``tau_f``, ``mu``, ``max_pressure`` and ``contact_fraction``; for ``mu_lateral``
+        absolute, over |μ| (the lateral force can vanish).
     residuals, levels, diagnostics : mapping, tuple, mapping
         The residuals of the answer (complementarity, gaps, load balance, the Krylov
         residual, and ``friction_mismatch``: the dissipation and direct forms of μ, a

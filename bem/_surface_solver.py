@@ -36,7 +36,8 @@ from ._surface_result import SurfaceResult, pressure_moments
 
 #: default accuracy target of the adaptive surface mesh (viscosine.SURFACE_RTOL, the one value
 #: the command line reads too): the estimated errors of μ and Δ/h_ref (relative) and of the
-#: contact fraction (absolute); docs/surfaces.md says why
+#: contact fraction (absolute, though its estimate is reported relative); docs/surfaces.md says
+#: why
 SURFACE_RTOL = viscosine.SURFACE_RTOL
 #: the coarsest grid's panels along x (at least; more where the surface's modes need them)
 SURFACE_START = 32
@@ -139,15 +140,16 @@ def _shapes(surface: Surface, nodes, max_panels) -> list:
     return out
 
 
-#: the estimate's scalars: relative ones, and absolute ones (the lateral force over μ's scale)
-RELATIVE = ("penetration", "tau_f", "mu", "max_pressure")
-ABSOLUTE = ("contact_fraction", "mu_lateral")
+#: the estimate's scalars: relative ones (over |q_N|), and the lateral coefficient over |μ| (it
+#: can vanish)
+RELATIVE = ("penetration", "tau_f", "mu", "max_pressure", "contact_fraction")
+ABSOLUTE = ("mu_lateral",)
 
 
 def _estimate(run: list):
     """The error estimate from the last converged grids (fine to coarse, each twice the next
     along both sides): `bem._estimate._first_order_bound` times ESTIMATE_SAFETY, relative for
-    RELATIVE (the lateral coefficient over |μ|), absolute for the contact fraction.  Returns
+    RELATIVE (the contact fraction's too), the lateral coefficient over |μ|.  Returns
     (estimate, reason): reason says why there is none yet."""
     if len(run) < 3:
         return None, "fewer than three converged grids"
@@ -160,19 +162,16 @@ def _estimate(run: list):
         e = ESTIMATE_SAFETY * _first_order_bound(vals)
         if k == "penetration":
             e += ESTIMATE_SAFETY * ROUNDOFF
-        if k in RELATIVE:
-            scale = abs(vals[0])
-        elif k == "mu_lateral":
-            scale = abs(run[0]["mu"])
-        else:
-            scale = 1.0
+        scale = abs(vals[0]) if k in RELATIVE else abs(run[0]["mu"])  # mu_lateral: over |μ|
         est[k] = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
     return est, None
 
 
-def _met(est, rtol) -> bool:
-    return est is not None and all(est[k] <= rtol for k in ("mu", "penetration",
-                                                             "contact_fraction"))
+def _met(est, rtol, fraction) -> bool:
+    """Whether the estimate meets rtol: μ and Δ/h_ref relative, the contact fraction absolute
+    (its relative estimate times ``fraction``, the grid's; docs/surfaces.md says why)."""
+    return est is not None and est["mu"] <= rtol and est["penetration"] <= rtol and \
+        est["contact_fraction"] * abs(fraction) <= rtol
 
 
 # --------------------------------------------------------------------------------------------
@@ -214,7 +213,8 @@ def solve_surface(*, load=None, penetration=None, speed, surface=None, direction
         are solved too and give the estimate.  Default: adaptive.
     rtol : float, optional
         Adaptive mesh: the target of the estimated errors of μ and Δ/h_ref (relative) and the
-        contact fraction (absolute); default 1e-3 (`SURFACE_RTOL`).
+        contact fraction (absolute: its relative estimate times the fraction); default 1e-3
+        (`SURFACE_RTOL`).
     max_nodes : int, optional
         Adaptive mesh: the most panels along x of the finest grid; default and bound: the
         largest grid of at most `max_surface_panels()` panels.
@@ -347,7 +347,7 @@ def _refine(p: dict, progress) -> SurfaceResult:
                 if est is not None:
                     text += f", estimate mu {est['mu']:.1e}"
                 progress(text + f" ({time.perf_counter() - t0:.1f} s)")
-            if p["nodes"] is None and _met(est, p["rtol"]):
+            if p["nodes"] is None and _met(est, p["rtol"], sc["contact_fraction"]):
                 break
         else:
             failed += 1
@@ -386,14 +386,16 @@ def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
         if problems:
             status = STATUS_INVALID
             message = f"{MESSAGES[STATUS_INVALID]}: " + "; ".join(problems)
-    if status == CONVERGED and p["nodes"] is None and not _met(est, p["rtol"]):
+    if status == CONVERGED and p["nodes"] is None and \
+            not _met(est, p["rtol"], sc["contact_fraction"]):
         status = STATUS_TARGET
         if est is None:
             message = f"{MESSAGES[STATUS_TARGET]} ({reason}; finest grid {nx} x {ny})"
         else:
             message = (f"{MESSAGES[STATUS_TARGET]}: estimated errors mu {est['mu']:.2e}, "
                        f"penetration {est['penetration']:.2e}, contact fraction "
-                       f"{est['contact_fraction']:.2e} > rtol {p['rtol']:g} at {nx} x {ny}")
+                       f"{est['contact_fraction'] * abs(sc['contact_fraction']):.2e} "
+                       f"(absolute) > rtol {p['rtol']:g} at {nx} x {ny}")
     if status == CONVERGED and est is None:
         warnings.append(f"no error estimate: {reason}")
     counts = [c[1]["n_patches"] for c in converged[-4:]]

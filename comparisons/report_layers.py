@@ -64,7 +64,7 @@ def layers_section(doc, folder, store, cfg, timings):
             "and figure 12's semi-analytic curve.")
     layers.write_contact(_png(folder, "layers_contact"), sweeps)
     est = ("" if cf_err is None else
-           f"; the BEM's estimated error of 2a/λ, at most {cf_err:.1e} (absolute)")
+           f"; the BEM's estimated error of 2a/λ, at most {cf_err:.1e} (relative)")
     doc.img("layers_contact.png",
             f"Contact fraction 2a/λ against V/V0 at p̃∞ = {load:g}, the same runs{est}. Black: "
             "the half-space (semi-analytic line: ka/π).")

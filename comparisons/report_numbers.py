@@ -409,7 +409,7 @@ def layer_sweeps(store, cfg):
     dict
         ``load``, ``nu``, ``nodes``; ``curves``: per foundation, one dict per thickness
         (``d_over_lambda``, None for the half-space; ``speed``, ``mu``, ``contact_fraction``
-        and their ``mu_error`` (relative) and ``contact_fraction_error`` (absolute), the BEM's
+        and their ``mu_error`` and ``contact_fraction_error`` (both relative), the BEM's
         own estimates, None where it gives none; ``peak`` (V/V0, μ) by `_peak`; ``failed``,
         the speeds whose run failed); ``analytic``: the semi-analytic half-space (``speed``,
         ``mu``, ``contact_fraction`` = ka/π, ``peak`` its friction peak) and ``half_space_mu``,

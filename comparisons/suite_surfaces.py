@@ -43,8 +43,10 @@ SURFACE_REFERENCES = {
     "closed_form": "full contact in closed form: each family of ridges is the line's Appendix B "
                    "at its speed component, w cos θ and w sin θ (docs/surfaces.md §2.2)",
 }
-#: the reference's estimates are relative for these (absolute for mu_lateral, contact_fraction)
-_SURFACE_RELATIVE = ("mu", "penetration")
+#: the surface BEM's estimates are relative for these (mu_lateral's over |μ|)
+_SURFACE_RELATIVE = ("mu", "penetration", "contact_fraction")
+#: the surface reference's are relative for these (absolute for mu_lateral, contact_fraction)
+_REFERENCE_RELATIVE = ("mu", "penetration")
 
 SURFACE_RULE = (
     "Surface cases (a rigid periodic surface, three-dimensional contact) are solved by the "
@@ -277,7 +279,7 @@ def compute_surface(case, progress=None):
             if four.success:
                 e = float(four.error_estimate.get(k, math.nan))
                 fv = (float(getattr(four, k)), e * abs(float(getattr(four, k)))
-                      if k in _SURFACE_RELATIVE else e)
+                      if k in _REFERENCE_RELATIVE else e)
             else:
                 fv = (math.nan, math.nan)
         a = exact_vals[k] if exact_vals is not None else None

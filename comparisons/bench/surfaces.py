@@ -113,7 +113,8 @@ def adaptive():
               bem.self_affine(**SELF_AFFINE), SELF_AFFINE_LOAD)]
     print(f"\n## Surface BEM, the adaptive default (rtol 1e-3) against the fixed grid it ends "
           f"on (V/V0 = 1, E∞/E0 = 3; load average {_load()})\n")
-    print("| surface | adaptive [s] | its grid | estimate mu / Δ / contact | fixed grid [s] | "
+    print("| surface | adaptive [s] | its grid | estimate mu / Δ / contact (relative) | "
+          "fixed grid [s] | "
           "ratio | mu |")
     print("| --- | ---: | ---: | --- | ---: | ---: | ---: |")
     for name, surf, load in cases:
@@ -130,8 +131,8 @@ def adaptive():
               f"{e.get('contact_fraction', np.nan):.1e} | {tf:.1f} | {ta / tf:.2f} | "
               f"{a.mu:.6f} |", flush=True)
     print("\nadaptive: grids 32, 64, … a side until the estimates of mu and Δ/h_ref "
-          "(relative) and of the contact fraction (absolute) meet rtol; fixed: nodes = that "
-          "grid (its N/8 … N).")
+          "(relative) and of the contact fraction (absolute: the relative estimate shown times "
+          "the fraction) meet rtol; fixed: nodes = that grid (its N/8 … N).")
 
 
 def run(max_log2n=12):

@@ -263,6 +263,39 @@ def test_penetration_estimate_has_the_round_off_floor_of_the_separation():
         assert est["penetration"] == pytest.approx(1.5e-12 * 3, rel=1e-12)
 
 
+def test_contact_fraction_estimate_is_relative_and_the_target_absolute():
+    """The contact fraction's estimate is relative (docs/conventions.md): the first-order bound
+    of its grids, plus the unresolved memory's edge shift, over |fraction|.  The adaptive mesh
+    still stops on its absolute error (times pi, where several patches leave ka and ke
+    undefined), and under penetration control on the load's estimate too."""
+    from bem import _estimate as S
+    sls = bem.Prony.standard_linear_solid(3.0)
+    sc = dict(penetration=0.5, tau_f=0.1, mu=0.2, ka=1.0, ke=0.1, ke_hat=0.1, npatch=1,
+              min_panels=1000, gap_roundoff=0.0)
+    # fractions converging at first order to 0.02: 0.02 + 1e-4 * 1024/n
+    run = [(n, dict(sc, contact_fraction=0.02 + 1e-4 * 1024 / n)) for n in (1024, 2048, 4096)]
+    finest = 0.02 + 0.25e-4
+    bound = 1.5 * 0.375e-4  # 1.5 x the largest of the three differences
+    est, reason, note = S._estimate(run, sls, 1.0)
+    assert reason is None and note is None
+    assert est["contact_fraction"] == pytest.approx(bound / finest, rel=1e-12)
+    assert est["contact_fraction"] >= 0.25e-4 / finest  # it bounds the true (relative) error
+    speed = 2 * math.pi / 2048  # a memory length of half a panel at N/4 = 1024
+    shift = S._unresolved_memory(sls, speed, 1024)
+    est2, _, _ = S._estimate(run, sls, speed)
+    assert est2["contact_fraction"] == pytest.approx((bound + 1.5 * shift) / finest, rel=1e-12)
+    # several patches: met on pi x the absolute estimate, whatever the fraction
+    values = dict(run[-1][1], npatch=2, ka=None, ke=None)
+    many = dict(mu=0.0, penetration=0.0, contact_fraction=est["contact_fraction"])
+    absolute = math.pi * bound
+    assert S._met(many, values, 1.01 * absolute) and not S._met(many, values, 0.99 * absolute)
+    # under penetration control the load's estimate (relative) must meet rtol too
+    one = dict(mu=0.0, penetration=0.0, ka=0.0, ke=0.0)
+    assert S._met(one, run[-1][1], 1e-6)
+    assert not S._met(dict(one, load=2e-6), run[-1][1], 1e-6)
+    assert S._met(dict(one, load=0.5e-6), run[-1][1], 1e-6)
+
+
 def test_first_order_memory_law_against_the_semi_analytic_road():
     """Memories far under every fitted distance: the friction of the first-order memory law
     (bem._assemble._lag_friction) misses the semi-analytic μ by its second-order remainder, of

@@ -107,7 +107,8 @@ def test_operator_is_real_and_mirror_symmetric():
 def test_uniform_in_y_is_the_line_contact():
     """z = h cos(kx) sliding along x against both line-contact roads, within the sum of the
     estimates (512 panels a side: measured |mu - analytic| = 1.2e-5 relative against an
-    estimate of 1.8e-4, contact fraction 4.4e-5 against 5.5e-4)."""
+    estimate of 1.8e-4, contact fraction 4.4e-5 against 5.5e-4, absolute; the estimates are
+    relative)."""
     s = bem.solve_surface(load=0.3, speed=1.0, surface=bem.bisinusoid(1.0, 0.0), nodes=512)
     a = analytic.solve(load=0.3, speed=1.0)
     line = bem.solve(load=0.3, speed=1.0, nodes=4096)
@@ -115,11 +116,13 @@ def test_uniform_in_y_is_the_line_contact():
     est = s.error_estimate
     assert abs(s.mu - a.mu) <= est["mu"] * s.mu
     assert abs(s.penetration - a.penetration) <= est["penetration"] * s.penetration
-    assert abs(s.contact_fraction - a.contact_fraction) <= est["contact_fraction"]
+    assert abs(s.contact_fraction - a.contact_fraction) <= \
+        est["contact_fraction"] * s.contact_fraction
     lest = line.error_estimate
     assert abs(s.mu - line.mu) <= est["mu"] * s.mu + lest["mu"] * line.mu
-    assert abs(s.contact_fraction - line.contact_fraction) <= est["contact_fraction"] + \
-        lest["contact_fraction"]
+    assert abs(s.contact_fraction - line.contact_fraction) <= \
+        est["contact_fraction"] * s.contact_fraction + \
+        lest["contact_fraction"] * line.contact_fraction
     assert s.mu_lateral == pytest.approx(0.0, abs=ROUNDOFF)
     # the contact leads: its centre ahead of the crest (e > 0), the pressure's further (ê > e)
     p = s.patches[0]
@@ -138,7 +141,8 @@ def test_sliding_along_the_ridges_is_relaxed_and_frictionless():
     assert s.success
     assert abs(s.mu) < ROUNDOFF and abs(s.mu_lateral) < ROUNDOFF
     assert abs(s.penetration - w.penetration) <= s.error_estimate["penetration"] * w.penetration
-    assert abs(s.contact_fraction - w.contact_fraction) <= s.error_estimate["contact_fraction"]
+    assert abs(s.contact_fraction - w.contact_fraction) <= \
+        s.error_estimate["contact_fraction"] * s.contact_fraction
 
 
 @pytest.mark.parametrize("theta", [30.0, -60.0])
@@ -388,3 +392,19 @@ def test_an_isotropic_spectrum_gives_the_same_friction_in_every_direction():
     assert spread < 0.01, means
     single = np.max(mu.max(axis=1) / mu.min(axis=1) - 1.0)
     assert single > 2 * spread, (single, spread)
+
+
+def test_contact_fraction_estimate_is_relative_and_the_target_absolute():
+    """The surface BEM's estimate of the contact fraction is relative (docs/conventions.md), as
+    Δ/h_ref's and μ's; the adaptive target stays on its absolute error (docs/surfaces.md §3.9)."""
+    from bem import _surface_solver as S
+    base = dict(penetration=0.5, tau_f=0.1, mu=0.2, max_pressure=1.0, mu_lateral=0.0)
+    # fine to coarse, converging at first order to 0.05: 0.05 + 1e-3 * 32/n
+    run = [dict(base, contact_fraction=0.05 + 1e-3 * 32 / n) for n in (128, 64, 32)]
+    est, reason = S._estimate(run)
+    assert reason is None
+    bound = 1.5 * 0.375e-3  # 1.5 x the largest of the three differences
+    assert est["contact_fraction"] == pytest.approx(bound / run[0]["contact_fraction"],
+                                                    rel=1e-12)
+    frac = run[0]["contact_fraction"]
+    assert S._met(est, 1.01 * bound, frac) and not S._met(est, 0.99 * bound, frac)

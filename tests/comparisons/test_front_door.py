@@ -26,7 +26,7 @@ DATA = Path(suite.__file__).resolve().parent / "data" / "suite"
 #: the honesty studies' bound on a true error, in units of the record's own estimate
 ESTIMATE_FACTOR = 3.0
 #: scalars judged: (key, relative?), as `error_estimate` measures them (conventions)
-JUDGED = (("mu", True), ("tau_f", True), ("penetration", True), ("contact_fraction", False),
+JUDGED = (("mu", True), ("tau_f", True), ("penetration", True), ("contact_fraction", True),
           ("ka", False), ("ke", False), ("ke_hat", False))
 
 

@@ -24,7 +24,8 @@ def test_the_checks_hold_along_the_reports_route(checks):
     a = report_numbers.semi_analytic(0.3, 1.0)
     est = ext["error_estimate"]
     assert abs(ext["mu"] - a.mu) <= est["mu"] * a.mu
-    assert abs(ext["contact_fraction"] - a.contact_fraction) <= est["contact_fraction"]
+    assert abs(ext["contact_fraction"] - a.contact_fraction) <= \
+        est["contact_fraction"] * ext["contact_fraction"]  # relative
     assert abs(ridge["mu"]) < 1e-14
     w = report_numbers.semi_analytic(0.3, 0.0)
     assert abs(ridge["penetration"] / w.penetration - 1) <= ridge["error_estimate"]["penetration"]
