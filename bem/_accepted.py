@@ -123,15 +123,15 @@ def _check_material(material):
         raise bad("material", material, text)
     jp = material.j_plus
     if not J0_MIN <= material.J0 <= J0_MAX:
-        raise bad("material", material, f"J0={material.J0!r} is outside; {text}")
+        raise bad("material", material, f"J0={material.J0!r} is outside [{J0_MIN:g}, {J0_MAX:g}] 1/E_ref; {text}")
     for j, t in material.terms:
         if not TAU_MIN <= t <= TAU_MAX:
-            raise bad("material", material, f"tau_i={t!r} is outside; {text}")
+            raise bad("material", material, f"tau_i={t!r} is outside [{TAU_MIN:g}, {TAU_MAX:g}] τ_ref; {text}")
         if 0.0 < j < TERM_MIN * jp:
             raise bad("material", material, f"J_i={j!r} is below {TERM_MIN:g} J(0+); {text}")
     ratio = material.J0 / jp
     if any(j > 0.0 for j in material.J) and not 1.0 + RATIO_EPS < ratio <= RATIO_MAX:
-        raise bad("material", material, f"E∞/E0 = J0/J(0+) = {ratio!r} is outside; {text}")
+        raise bad("material", material, f"E∞/E0 = J0/J(0+) = {ratio!r} is outside (1 + {RATIO_EPS:g}, {RATIO_MAX:g}]; {text}")
     return material
 
 

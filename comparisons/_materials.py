@@ -453,6 +453,16 @@ def bem_series(model, e_ref):
     return roads.prony(*series), _dropped(weights)
 
 
+def negligible_dropped(prony):
+    """``(bem.Prony, dropped)``: a creep series read by the BEM (a --prony file) without its
+    terms below the BEM's floor, and the record's ``dropped_terms`` (None when none), as
+    `bem_series` does for a --material file."""
+    from viscosine import materials as vm
+    series, weights = vm.Creep(prony.J0, tuple(prony.J), tuple(prony.tau)).without_negligible(
+        roads.term_floor())
+    return (prony, None) if not weights else (roads.prony(*series), _dropped(weights))
+
+
 def _dropped(weights):
     """The record's ``dropped_terms`` of the weights w = J_k/J(0+) dropped below the BEM's
     floor (`Creep.without_negligible`), largest first; None when none."""

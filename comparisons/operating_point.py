@@ -24,6 +24,7 @@ roads' adapters (`comparisons.roads`) take it as they take a dict, and `spec` is
 from __future__ import annotations
 
 import dataclasses
+import os
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -103,6 +104,11 @@ def named(exc, door=CLI, point=None):
     if door == CLI and name == "layer" and point is not None and point.get("layer"):
         value = point["layer"].get("thickness_over_wavelength")  # the layer as typed: its d/λ
     said = PARAMETERS[name][door]
+    if door == CLI and name == "material" and point is not None:
+        given = next((k for k in ("prony", "material") if point.get(k)), None)
+        if given:  # a series read from a file: the file as typed, and which number is out
+            path = os.path.basename(point[given].get("path", ""))
+            return BadInput(f"--{given} {path}: {_one_line(exc.allowed).split('; ')[0]}")
     if door == CLI:  # one short line: what is allowed; why is in --help and the docs
         return must_be(said, shown(value), allowed_part(exc.allowed), exc.unit)
     tail = f" [{exc.unit}]" if exc.unit else ""

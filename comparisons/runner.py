@@ -129,6 +129,11 @@ def read_input(name, path, **reader_options):
         raise BadInput(f"{where}: {_reason(exc)}") from None
     info = {"path": os.path.abspath(path), "sha256": hashlib.sha256(data).hexdigest()}
     info.update(reader_options)  # a surface file in metres: its units and Lx
+    if name == "prony":  # a term below the BEM's floor is dropped, as from --material
+        from . import _materials
+        obj, dropped = _materials.negligible_dropped(obj)
+        if dropped:
+            info["dropped_terms"] = dropped
     return info, obj
 
 

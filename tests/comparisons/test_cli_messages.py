@@ -89,6 +89,8 @@ CASES += [
     (PB + ["--profile", "{empty}"], "--profile"),
     (PB + ["--prony", "{bad}"], "--prony"),
     (PB + ["--prony", "{missing}"], "--prony"),
+    (PB + ["--prony", "{stiff}"], "--prony"),      # a series out of the BEM's range: the file
+    (PB + ["--material", "{longtau}"], "--material"),
     (PB + ["--material", "{missing}"], "--material"),
     (PB + ["--material", "{bad}"], "--material"),
     (PA + ["--fields", "{bad}/f.csv"], "--fields"),
@@ -159,7 +161,8 @@ CASES += [
 
 def _argv(argv, tmp):
     files = {"bad": tmp / "bad.txt", "empty": tmp / "empty.txt", "missing": tmp / "missing.txt",
-             "table": tmp / "table.csv", "relax": tmp / "relax.txt", "gt": tmp / "gt.csv"}
+             "table": tmp / "table.csv", "relax": tmp / "relax.txt", "gt": tmp / "gt.csv",
+             "stiff": tmp / "stiff.txt", "longtau": tmp / "longtau.txt"}
     return [a.format(**{k: str(v) for k, v in files.items()}) for a in argv]
 
 
@@ -168,6 +171,8 @@ def _files(tmp):
     (tmp / "empty.txt").write_text("")
     (tmp / "table.csv").write_text("temperature,log_aT\n-10,3\n20,0\n80,-4\n")
     (tmp / "relax.txt").write_text("E_r 1\n2 0.5\n")
+    (tmp / "stiff.txt").write_text("J0 1e9\n0.5 1\n")
+    (tmp / "longtau.txt").write_text("J0 1\n0.5 1e40\n")
     (tmp / "gt.csv").write_text("time [s],G [MPa]\n" + "".join(    # G(t) = 1 + 2 exp(-t)
         f"{t!r},{1.0 + 2.0 * math.exp(-t)!r}\n" for t in (10.0 ** (k / 4) for k in range(-12, 9))))
 

@@ -374,6 +374,23 @@ def test_a_creep_file_with_a_negligible_term_is_solved_without_it(tmp_path, caps
     _same_point(b, a)
 
 
+def test_a_prony_file_with_a_negligible_term_is_solved_without_it(tmp_path, capsys):
+    """The same creep file through --prony (the BEM's own reader): the same drop, listed in
+    the record's material (it was refused, naming --material)."""
+    full = tmp_path / "creep_tiny.txt"
+    full.write_text("J0 1\n0.5 1\n1.5e-13 0.1\n")
+    bare = tmp_path / "creep.txt"
+    bare.write_text("J0 1\n0.5 1\n")
+    argv = ["point", "--solver", "bem", "--load", "0.3", "--speed", "1", "--nodes", "1024"]
+    b, _ = _point(capsys, *argv, "--prony", full)
+    a, _ = _point(capsys, *argv, "--prony", bare)
+    dropped = b["material"]["dropped_terms"]
+    assert dropped["count"] == 1 and dropped["floor"] == bem.TERM_MIN
+    assert dropped["largest_weight"] == pytest.approx(1.5e-13 / 0.5, rel=1e-9)
+    assert "dropped_terms" not in a["material"]
+    _same_point(b, a)
+
+
 def test_solve_si_drops_a_negligible_term_with_a_warning():
     """bem.solve_si: the solid of E∞/E0 = 3 plus a relaxation term 3e-13 E0 solves (the creep
     term, ~1e-13 J(0+), dropped with a warning) to the point of the solid within its weight."""
