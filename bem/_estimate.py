@@ -7,9 +7,10 @@ import math
 
 import numpy as np
 
-from . import _assemble
-from ._assemble import (ROUNDOFF, _full_patch, _patches, _window_friction, counted_contact,
-                        edge_lag_reach, edge_lags, fit_panels)
+from . import _assemble, _edges
+from ._assemble import _window_friction
+from ._edges import (ROUNDOFF, _full_patch, _patches, counted_contact, edge_lag_reach, edge_lags,
+                     fit_panels)
 from ._influence import collocation_shifts
 from ._layer import MIN_LAYER_PANELS
 
@@ -112,7 +113,7 @@ def _level_scalars(res, grid, profile, material, speed, amp):
 def _narrowest_gap(counted):
     """Panels of the narrowest run of free panels between the counted patches (one patch: the
     period less it; checked like a patch's width, `MIN_PATCH_PANELS`)."""
-    free = _assemble._runs(~counted)
+    free = _edges._runs(~counted)
     return min(length for _, length in free) if free else counted.size
 
 

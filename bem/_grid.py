@@ -30,7 +30,7 @@ import numpy as np
 import scipy.fft as sfft
 
 from . import _kernels
-from ._assemble import _patches, _runs
+from ._edges import _patches, _runs
 from ._gap import _gap_solve, _gap_solve_sep, _gap_step_tol
 from ._influence import collocation_shifts, influence_coefficients_nd
 from ._inputs import Prony

@@ -68,7 +68,7 @@ def test_unresolved_memory_length_enters_the_estimate():
     """At V/V0 = 1e-3 (memory length 1.6e-4 λ) the trailing edge retreats from Westergaard's by
     (1 − 1/ρ)(V/V0)/2 = 3.3e-4 (the paper's first-order law).  On N = 512 and 1024 the memory
     lies far below the distances the edge fits use: their zeros find the outer fields' edges,
-    and the memory lag of the fits (bem._assemble.edge_lags) puts the edges back; without it ka
+    and the memory lag of the fits (bem._edges.edge_lags) puts the edges back; without it ka
     is off by the whole shift.  At every N the estimate, which carries what the lag may leave
     and the whole shift of a memory between the fitted distances (N = 2048), covers the true
     error."""
@@ -370,7 +370,7 @@ def test_a_round_off_sliver_next_to_the_patch_is_not_counted():
     solve leaves near full contact at N = 2^22) is one contact with its patch to round-off:
     one patch, the same edges, and the estimate is not withheld; a run carrying 1e-6 of the
     load, or one behind a gap above the validity gate's round-off, stays a patch."""
-    from bem._assemble import counted_contact
+    from bem._edges import counted_contact
     from bem._estimate import _level_scalars
     res, grid, profile, material, load = _near_full_contact_state()
     clean = _level_scalars(dict(res), grid, profile, material, 1.0, 1.0)

@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from bem import _assemble
+from bem import _edges
 
 #: the tail fit on data of exactly its form, relative to h: its fixed point in d stops once the
 #: zero moves by 1e-10 h (rounding of a 5-column least-squares fit is far below)
@@ -40,9 +40,9 @@ def _synthetic(edge, nodes, tail_in, tail_out):
 @pytest.mark.parametrize("frac", [-0.45, -0.1, 0.0, 0.3, 0.5, 0.77, 1.2, 1.45])
 def test_tail_fit_returns_the_edge_of_exact_data(nodes, frac):
     inside, outside, h = _synthetic(frac / nodes, nodes, 0.02, -0.015)
-    got = _assemble.edge_offset(inside, outside, h, nodes)
+    got = _edges.edge_offset(inside, outside, h, nodes)
     assert abs(got - frac * h) < TOL_EXACT * h
-    plain = _assemble.edge_offset_plain(inside, outside, h, nodes)
+    plain = _edges.edge_offset_plain(inside, outside, h, nodes)
     assert abs(plain - frac * h) > PLAIN_OFF * h  # the tail is what the plain fit misses
 
 
@@ -50,7 +50,7 @@ def test_tail_fit_without_tail_is_the_cubic_zero():
     """No tail (b = 0): both fits find the zero of the cubics."""
     nodes = 16384
     inside, outside, h = _synthetic(0.4 / nodes, nodes, 0.0, 0.0)
-    assert abs(_assemble.edge_offset(inside, outside, h, nodes) - 0.4 * h) < TOL_EXACT * h
+    assert abs(_edges.edge_offset(inside, outside, h, nodes) - 0.4 * h) < TOL_EXACT * h
 
 
 def test_short_sides_keep_the_plain_fit():
@@ -58,8 +58,8 @@ def test_short_sides_keep_the_plain_fit():
     nodes = 4096
     inside, outside, h = _synthetic(0.3 / nodes, nodes, 0.0, 0.0)
     short_in, short_out = inside[:6], outside[:6]
-    assert _assemble.edge_offset(short_in, short_out, h, nodes) == \
-        _assemble.edge_offset_plain(short_in, short_out, h, nodes)
+    assert _edges.edge_offset(short_in, short_out, h, nodes) == \
+        _edges.edge_offset_plain(short_in, short_out, h, nodes)
 
 
 def test_a_side_whose_zero_moves_with_the_window_is_dropped():
@@ -72,14 +72,14 @@ def test_a_side_whose_zero_moves_with_the_window_is_dropped():
     # a weak layer: strong enough to move the zero with the window, weak enough that both fits
     # still find one (at 0.5 the gap side's fit finds none and the check is not exercised)
     layered = outside * (1.0 + 0.02 * np.exp(-d_out / (6.0 * h)))
-    got = _assemble.edge_offset(inside, layered, h, nodes)
-    assert abs(got - _assemble.edge_offset(inside, np.zeros(0), h, nodes)) < TOL_EXACT * h
+    got = _edges.edge_offset(inside, layered, h, nodes)
+    assert abs(got - _edges.edge_offset(inside, np.zeros(0), h, nodes)) < TOL_EXACT * h
     assert abs(got - 0.3 * h) < TOL_EXACT * h
     m1, m2 = 4, 16  # the windows of N = 4096: sqrt(N)/16 .. sqrt(N)/4, and .. sqrt(N)/2
-    narrow = _assemble._tail_fit_root(layered, 1.0, 1.0, m1, m2, got, h)
-    wide = _assemble._tail_fit_root(layered, 1.0, 1.0, m1, 2 * m2, got, h)
+    narrow = _edges._tail_fit_root(layered, 1.0, 1.0, m1, m2, got, h)
+    wide = _edges._tail_fit_root(layered, 1.0, 1.0, m1, 2 * m2, got, h)
     assert narrow is not None and wide is not None
-    assert abs(narrow - wide) > _assemble.EDGE_WINDOW_AGREEMENT * h
+    assert abs(narrow - wide) > _edges.EDGE_WINDOW_AGREEMENT * h
     assert abs(0.5 * (got + narrow) - 0.3 * h) > 1e3 * TOL_EXACT * h
 
 
@@ -93,18 +93,18 @@ def test_a_side_cut_short_is_checked_on_the_windows_it_holds():
     d_out = (np.arange(outside.size) + 1 - 0.3) * h
     layered = outside * (1.0 + 0.02 * np.exp(-d_out / (6.0 * h)))
     m1, m2 = 4, 16
-    alone = _assemble.edge_offset(inside, np.zeros(0), h, nodes)
+    alone = _edges.edge_offset(inside, np.zeros(0), h, nodes)
     for short in (layered[:2 * m2], layered[:m2 + 1]):
-        got = _assemble.edge_offset(inside, short, h, nodes)
+        got = _edges.edge_offset(inside, short, h, nodes)
         assert abs(got - alone) < TOL_EXACT * h and abs(got - 0.3 * h) < TOL_EXACT * h
     # the short layered side on its own windows: a zero, but one that moves with the window
-    narrow = _assemble._tail_fit_root(layered, 1.0, 1.0, m1, m2 - 1, alone, h)
-    wide = _assemble._tail_fit_root(layered, 1.0, 1.0, m1, 2 * m2 - 2, alone, h)
+    narrow = _edges._tail_fit_root(layered, 1.0, 1.0, m1, m2 - 1, alone, h)
+    wide = _edges._tail_fit_root(layered, 1.0, 1.0, m1, 2 * m2 - 2, alone, h)
     assert narrow is not None and wide is not None
-    assert abs(narrow - wide) > _assemble.EDGE_WINDOW_AGREEMENT * h
+    assert abs(narrow - wide) > _edges.EDGE_WINDOW_AGREEMENT * h
     # a clean side cut as short counts alone, to the accuracy of exact data
     clean = outside[:2 * m2]
-    assert abs(_assemble.edge_offset(np.zeros(0), clean, h, nodes) - 0.3 * h) < TOL_EXACT * h
+    assert abs(_edges.edge_offset(np.zeros(0), clean, h, nodes) - 0.3 * h) < TOL_EXACT * h
 
 
 def test_a_fixed_point_that_has_not_settled_gives_no_zero(monkeypatch):
@@ -113,10 +113,10 @@ def test_a_fixed_point_that_has_not_settled_gives_no_zero(monkeypatch):
     nodes = 4096
     inside, _, h = _synthetic(0.3 / nodes, nodes, 0.02, 0.0)
     start = 0.9 * h
-    root = _assemble._tail_fit_root(inside, -1.0, 0.0, 4, 16, start, h)
+    root = _edges._tail_fit_root(inside, -1.0, 0.0, 4, 16, start, h)
     assert root is not None and abs(root - 0.3 * h) < TOL_EXACT * h
-    monkeypatch.setattr(_assemble, "TAIL_FIT_PASSES", 2)
-    assert _assemble._tail_fit_root(inside, -1.0, 0.0, 4, 16, start, h) is None
+    monkeypatch.setattr(_edges, "TAIL_FIT_PASSES", 2)
+    assert _edges._tail_fit_root(inside, -1.0, 0.0, 4, 16, start, h) is None
 
 
 @pytest.mark.parametrize("jitter, counts", [(5e-10, True), (5e-8, False)])
@@ -128,7 +128,7 @@ def test_a_fixed_point_jittering_at_rounding_still_gives_its_zero(monkeypatch, j
     nodes = 4096
     inside, _, h = _synthetic(0.3 / nodes, nodes, 0.02, 0.0)
     scale = 16 * h  # the window's extent, m2 = 16
-    plain = _assemble._cubic_zero_near
+    plain = _edges._cubic_zero_near
     sign = [1.0]
 
     def jittering(c, x):
@@ -136,8 +136,8 @@ def test_a_fixed_point_jittering_at_rounding_still_gives_its_zero(monkeypatch, j
         sign[0] = -sign[0]
         return None if z is None else z + sign[0] * jitter * h / scale
 
-    monkeypatch.setattr(_assemble, "_cubic_zero_near", jittering)
-    root = _assemble._tail_fit_root(inside, -1.0, 0.0, 4, 16, 0.3 * h, h)
+    monkeypatch.setattr(_edges, "_cubic_zero_near", jittering)
+    root = _edges._tail_fit_root(inside, -1.0, 0.0, 4, 16, 0.3 * h, h)
     if counts:
         assert root is not None and abs(root - 0.3 * h) < TOL_EXACT * h
     else:

@@ -157,7 +157,7 @@ def _first_order(material, speed, n):
 def test_memory_far_below_a_panel_moves_the_edges_by_the_low_speed_law(material, n):
     """Memories of 1e-3 to 0.05 panel: the edge fits see the outer fields, whose edges are
     those of the elastic contact moved by the memory (the pressure's by sum J_i L_i/J_s toward
-    +x, the gap's not at all); bem._assemble.edge_lags puts the true edges back."""
+    +x, the gap's not at all); bem._edges.edge_lags puts the true edges back."""
     for fraction in (1e-3, 0.05):
         speed = fraction * 2 * math.pi / (n * max(material.tau))
         dka, ke = _first_order(material, speed, n)
@@ -167,8 +167,8 @@ def test_memory_far_below_a_panel_moves_the_edges_by_the_low_speed_law(material,
 def test_without_the_memory_lag_the_contraction_is_missed(monkeypatch):
     """The check above can fail: without the lag the fits average the pressure's and the gap's
     edges, and ka stays Westergaard's."""
-    from bem import _assemble
-    monkeypatch.setattr(_assemble, "LAG_FRACTION", 0.0)
+    from bem import _edges
+    monkeypatch.setattr(_edges, "LAG_FRACTION", 0.0)
     speed = 0.01 * 2 * math.pi / (4096 * max(STIFF.tau))
     dka, ke = _first_order(STIFF, speed, 4096)
     assert abs(dka) < LAG_LEFT and abs(ke - 1) < LAG_LEFT
@@ -311,9 +311,9 @@ def test_what_the_memory_lag_leaves_falls_like_one_over_root_n():
     """A memory a hundredth of the edge fits' reach: what their lag correction leaves of the
     first-order shift falls like 1/sqrt(N), under LAG_RESIDUAL sqrt(4096/N), the share the
     estimate counts (measured 0.039, 0.0087 and 0.0043 on 4096, 65536 and 262144 panels)."""
-    from bem import _assemble, _estimate
+    from bem import _edges, _estimate
     for n in (4096, 65536, 262144):
-        reach = _assemble.edge_lag_reach(1.0 / n, n) * n  # in panels
+        reach = _edges.edge_lag_reach(1.0 / n, n) * n  # in panels
         dka, dke, _ = _edge_residual(1000.0, 0.1, n, 0.01 * reach)
         share = _estimate.LAG_RESIDUAL * math.sqrt(4096 / n)
         assert max(dka, dke) < share, (n, dka, dke)
