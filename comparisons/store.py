@@ -6,7 +6,8 @@ unique to the writing process (pid and a random suffix, so two runs on one folde
 one) and renamed into place, so an interrupted run loses nothing it has finished.
 
 Reading back, every file is validated before it is used (`Store.problem`): the JSON must parse,
-hold the spec it is filed under, and — for a converged run — a record that passes the last line
+hold the spec it is filed under, come from this version of viscosine (a record's keys may
+mean other things in another), and — for a converged run — a record that passes the last line
 of defence (`comparisons.gate`); the .npz must hold the four fields as finite 1-D arrays of one
 length (and, for a non-uniform grid, their cell widths ``width``, making one period:
 `viscosine.Fields`), or for a surface the grid's x and y and the three fields on it.  A truncated, empty or garbage file is treated as missing: ``has`` notes it
@@ -21,7 +22,7 @@ import sys
 
 import numpy as np
 
-from viscosine import Fields
+from viscosine import Fields, __version__
 from viscosine.fields import WIDTH  # the cells of a non-uniform grid (optional)
 
 from . import gate
@@ -130,7 +131,7 @@ class Store:
             self._atomic(self._path(k, "npz"), lambda fh: np.savez(
                 fh, **{n: np.asarray(data[n], dtype=float) for n in names}), "wb")
         doc = {"spec": op.public(spec), "ok": bool(out["ok"]), "record": out["record"],
-               "error": out["error"], "seconds": out.get("seconds")}
+               "error": out["error"], "seconds": out.get("seconds"), "version": __version__}
         text = json.dumps(doc, allow_nan=False)
         self._atomic(self._path(k, "json"), lambda fh: fh.write(text), "w")
 
@@ -152,6 +153,8 @@ def _check_doc(doc, spec):
         return "not a stored result (keys spec, ok, record, error expected)"
     if doc["spec"] != op.public(spec):
         return "filed under this spec but holds another one"
+    if doc.get("version") != __version__:  # a record's keys may mean other things in another
+        return f"stored by viscosine {doc.get('version')}, not {__version__}"
     if not isinstance(doc["ok"], bool):
         return "ok is not true/false"
     if doc["ok"]:

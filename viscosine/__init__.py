@@ -34,7 +34,7 @@ class ViscosineWarning(UserWarning):
     result's ``warnings`` and in every JSON record): for example a memory layer under a panel,
     whose edges then carry an error of the order of the layer."""
 
-__version__ = "0.2.0"
+__version__ = "0.3.0"
 
 #: the accuracy the adaptive BEM aims at by default (``bem.solve(rtol=None)``, the command line
 #: without --rtol): every estimated error of mu, Delta/h, ka, ke below it.  Here, not in bem, so

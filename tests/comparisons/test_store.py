@@ -1,5 +1,5 @@
 """The results store never trusts a broken file: truncated, empty or garbage JSON and .npz files,
-and a file that holds another spec, are re-run with a note; temporary names are unique per
+and a file that holds another spec or comes from another version, are re-run with a note; temporary names are unique per
 process, so two runs on one folder never collide; `report --resume` goes through it."""
 import json
 import multiprocessing
@@ -94,6 +94,8 @@ def test_npz_with_wrong_arrays_is_not_trusted(store):
     (lambda d: d["record"].pop("ka"), "missing"),
     (lambda d: d.update(ok="yes"), "true/false"),
     (lambda d: d["record"].update(load=0.4), "asked for"),
+    (lambda d: d.update(version="0.2.0"), "stored by viscosine 0.2.0"),  # keys meant else
+    (lambda d: d.pop("version"), "stored by viscosine None"),
 ])
 def test_a_record_that_does_not_match_or_is_not_valid_is_not_trusted(edit, fragment, store):
     path = _path(store, SPEC, "json")
