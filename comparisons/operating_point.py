@@ -13,8 +13,10 @@ the one place where
 - SI input becomes the conventions' groups (`resolve_si`; the scales are echoed in the point's
   ``si`` and so in every record);
 - the depth rule of a layer is written (`penetration_clears_layer`);
-- a refusal names what the user typed (`PARAMETERS`, `named`): on the command line its option
-  (``--max-nodes 3 is not allowed: ...``), in Python its keyword (``max_nodes=3 ...``).
+- a refusal names what the user typed (`PARAMETERS`, `named`, `refuse`, `missing`): on the
+  command line its option (``--max-nodes 3 is not allowed: ...``, ``--ratio 3.0 is not allowed
+  here: ...``, ``--E0 is missing: ...``), in Python its keyword (``max_nodes=3 ...``,
+  ``ratio=3.0 is not allowed here: ...``, ``E0 is missing: ...``).
 
 A point is a `OperatingPoint` (frozen); it reads like the plain spec dict it replaces
 (``point["load"]``, ``point.get("layer")``: a read-only mapping of its public keys, the parsed
@@ -131,11 +133,28 @@ def allowed_part(text):
     return _allowed_part(_one_line(text))
 
 
-def refuse(name, why, value=None):
-    """The BadInput ``<option>[ value] is not allowed here: why`` of an option that does not
-    apply."""
-    said = option(name) if value is None else f"{option(name)} {value}"
-    return BadInput(f"{said} is not allowed here: {why}")
+def said(name, door=CLI):
+    """A parameter as the user names it at a door: its option on the command line (``door``
+    CLI, ``--max-nodes``), its keyword in Python (``door`` PYTHON, ``max_nodes``)."""
+    if name in PARAMETERS:
+        return PARAMETERS[name][door]
+    return option(name) if door == CLI else name
+
+
+def refuse(name, why, value=None, door=CLI):
+    """The BadInput of an option that does not apply (``why`` says it at the same door): on
+    the command line ``<option>[ value] is not allowed here: why`` (``--ratio 3.0 ...``), in
+    Python ``<keyword>[=value] is not allowed here: why`` (``ratio=3.0 ...``)."""
+    sep = " " if door == CLI else "="
+    text = said(name, door) if value is None else f"{said(name, door)}{sep}{value}"
+    return BadInput(f"{text} is not allowed here: {why}")
+
+
+def missing(name, needs, door=CLI):
+    """The one form of an option not given, at every door: ``<option> is missing: <needs>``
+    (``--E0 is missing: --units SI needs --E0, --nu and --amplitude to convert SI fields``;
+    in Python its keyword, ``door`` PYTHON).  ``needs``: what asks for it, and what to give."""
+    return BadInput(f"{said(name, door)} is missing: {needs}")
 
 
 #: why each option of the boundary-element road is refused on the semi-analytic one
@@ -461,10 +480,10 @@ def resolve_si(solver, si, *, loads=None, penetrations=None, speeds, material=No
         if extra:
             raise BadInput(f"{option(extra[0])} is not allowed with --material: the "
                            "material file fixes the moduli and times")
-    missing = [k for k in need if k not in given]
-    if missing:
-        raise BadInput(f"{option(missing[0])} is missing: --units SI needs --nu, --wavelength, "
-                       "--amplitude and --material or --E0 --Einf --tau-creep (or --tau-relax)")
+    absent = [k for k in need if k not in given]
+    if absent:
+        raise missing(absent[0], "--units SI needs --nu, --wavelength, --amplitude and "
+                      "--material or --E0 --Einf --tau-creep (or --tau-relax)")
     if material is None and "tau_creep" in given and "tau_relax" in given:
         raise BadInput(f"--tau-relax {shown(given['tau_relax'])} is not allowed with "
                        "--tau-creep: give one time of the solid")
@@ -513,6 +532,7 @@ def check_field_points(n):
 
 
 __all__ = ["DEFAULTS", "FIELD_POINTS", "PARAMETERS", "CLI", "PYTHON", "SPEC_KEYS",
-           "OPTIONAL_KEYS", "MATERIAL_OPTIONS", "FIT_OPTIONS", "FIT_ONLY", "OperatingPoint", "at", "build", "bem_only",
-           "refuse", "named", "must_be", "option", "public", "from_spec", "ratio_of", "hk_of", "direction_of",
-           "complete_case", "penetration_clears_layer", "resolve_si", "check_field_points"]
+           "OPTIONAL_KEYS", "MATERIAL_OPTIONS", "FIT_OPTIONS", "FIT_ONLY", "OperatingPoint",
+           "at", "build", "bem_only", "refuse", "missing", "said", "named", "must_be", "option",
+           "public", "from_spec", "ratio_of", "hk_of", "direction_of", "complete_case",
+           "penetration_clears_layer", "resolve_si", "check_field_points"]

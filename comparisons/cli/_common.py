@@ -396,11 +396,11 @@ def layer_options(args, si):
                            "--thickness)")
         return None
     if args.foundation is None:
-        raise BadInput("--foundation is missing: --thickness needs it (bonded or frictionless: "
-                       "the layer's lower face on the rigid foundation)")
+        raise op.missing("foundation", "--thickness needs it (bonded or frictionless: the "
+                         "layer's lower face on the rigid foundation)")
     if args.nu is None:
-        raise BadInput("--nu is missing: --thickness needs the layer's Poisson ratio, in "
-                       "(-1, 0.5] (its factor S(kd, ν))")
+        raise op.missing("nu", "--thickness needs the layer's Poisson ratio, in (-1, 0.5] "
+                         "(its factor S(kd, ν))")
     d = args.thickness
     if si is not None:
         if not (math.isfinite(d) and d > 0.0):
@@ -479,8 +479,8 @@ def _surface_si(args, files):
         raise BadInput(f"--amplitude {args.amplitude!r} is not allowed with --surface FILE: the "
                        "file's heights fix h_ref (max z − mean z)")
     if args.wavelength is None:
-        raise BadInput("--wavelength is missing: with --units SI and --surface FILE it is the "
-                       "cell's side Lx [m] (the file's heights are in metres)")
+        raise op.missing("wavelength", "with --units SI and --surface FILE it is the cell's "
+                         "side Lx [m] (the file's heights are in metres)")
     info, surface = runner.read_input("surface", args.surface, units="SI",
                                       length=args.wavelength)
     files["surface"] = (info, surface)

@@ -46,20 +46,26 @@ def check_point(point, door=op.CLI):
     """BadInput unless the operating point dict is valid: the options that go together, then
     the ranges of the road that gives the reference (`_reference.reference_for`: the
     semi-analytic road's where it applies, else the BEM's), refused as every door refuses them
-    (`comparisons.operating_point.named`: on the command line, ``door`` CLI, ``--load -1.0: must
-    be ...``; in Python, ``door`` PYTHON, ``load=-1.0 is not allowed: ...``)."""
+    (`comparisons.operating_point.named`, `refuse`, `missing`: on the command line, ``door``
+    CLI, ``--load -1.0: must be ...``, ``--ratio 3.0 is not allowed here: ...``; in Python,
+    ``door`` PYTHON, ``load=-1.0 is not allowed: ...``, ``ratio=3.0 is not allowed here: the
+    prony file fixes the material``, ``speed is missing: ...``)."""
+    def kw(name):  # the parameter as the user names it at this door
+        return op.said(name, door)
+
     if point.get("load") is not None and point.get("penetration") is not None:
-        raise op.refuse("penetration", "give one of --load and --penetration",
-                        shown(point["penetration"]))
+        raise op.refuse("penetration", f"give one of {kw('load')} and {kw('penetration')}",
+                        shown(point["penetration"]), door)
     if point.get("load") is None and point.get("penetration") is None:
-        raise BadInput("--load is missing: give --load or --penetration")
+        raise op.missing("load", f"give {kw('load')} or {kw('penetration')}", door)
     if point.get("prony") and point.get("ratio") is not None:
-        raise op.refuse("ratio", "the --prony file fixes the material", shown(point["ratio"]))
+        raise op.refuse("ratio", f"the {kw('prony')} file fixes the material",
+                        shown(point["ratio"]), door)
     if point.get("profile") and point.get("hk") is not None:
-        raise op.refuse("hk", "the --profile file fixes the indenter and its amplitude",
-                        shown(point["hk"]))
+        raise op.refuse("hk", f"the {kw('profile')} file fixes the indenter and its amplitude",
+                        shown(point["hk"]), door)
     if point.get("speed") is None:
-        raise BadInput("--speed is missing: give the sliding speed V/V0")
+        raise op.missing("speed", "give the sliding speed V/V0", door)
     if point.get("layer") is not None:
         check_layer(point["layer"], "--layer" if door == op.CLI else "layer", point)
     problem = [None, None]
@@ -157,8 +163,7 @@ def point_from_args(args):
             si = si_fields(args)
         return point, case, si
     if given["speed"] is None:
-        raise BadInput("--speed is missing: give --case NAME, or --speed with --load or "
-                       "--penetration")
+        raise op.missing("speed", "give --case NAME, or --speed with --load or --penetration")
     if args.units == "SI":
         if given["profile"] or given["prony"]:
             raise op.refuse("units", "SI points are the sinusoid on the standard linear "
@@ -168,9 +173,8 @@ def point_from_args(args):
         if args.tau_creep is None and args.tau_relax is None:
             need.insert(2, "tau_creep")
         if need:
-            raise bad_input(f"--{need[0].replace('_', '-')}", None, "missing with --units SI",
-                            "--E0 --Einf, --tau-creep or --tau-relax, --nu --wavelength "
-                            "--amplitude")
+            raise op.missing(need[0], "--units SI needs --E0 --Einf, --tau-creep or "
+                             "--tau-relax, --nu --wavelength --amplitude")
         si = {k: getattr(args, k) for k in ("E0", "Einf", "tau_creep", "tau_relax", "nu",
                                              "wavelength", "amplitude")}
         control = ({"loads": [given["load"]]} if given["load"] is not None else
@@ -191,8 +195,8 @@ def si_fields(args):
     """(E0 [Pa], ν, amplitude h [m]) that convert SI fields (`to_conventions`), checked."""
     need = [k for k in ("E0", "nu", "amplitude") if getattr(args, k) is None]
     if need:
-        raise bad_input(f"--{need[0]}", None, "missing with --units SI",
-                        "--E0, --nu and --amplitude to convert SI fields")
+        raise op.missing(need[0], "--units SI needs --E0, --nu and --amplitude to convert SI "
+                         "fields")
     from viscosine import si as si_front
     try:  # the SI front's own checks of E0, ν and h
         return si_front.field_scales(E0=args.E0, nu=args.nu, amplitude=args.amplitude)

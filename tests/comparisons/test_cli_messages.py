@@ -157,6 +157,22 @@ CASES += [
     (PB + ["--material", "{gt}", "--nu", "0.4", "--extend", "9"], "--extend"),
     (PB + ["--material", str(SBR), "--nu", "0.4", "--material-kind", "E"], "--nu"),
 ]
+VS = ["verify", "--scalars", "{empty}"]
+#: an option not given where it is needed: ``<option> is missing: <what needs it>`` (one form)
+MISSING = [
+    (SI[:-2], "--amplitude"),
+    (SI[:9] + SI[11:], "--E0"),
+    (VS + ["--load", "0.1"], "--speed"),
+    (VS + ["--speed", "1"], "--load"),
+    (VS + ["--case", "sls-partial-v1", "--units", "SI"], "--E0"),
+    (VS + ["--case", "sls-partial-v1", "--units", "SI", "--E0", "1e6", "--nu", "0.5"],
+     "--amplitude"),
+    (VS + SI[5:9] + ["--units", "SI", "--E0", "1e6", "--Einf", "3e6", "--nu", "0.5",
+                     "--wavelength", "1e-3", "--amplitude", "1e-5"], "--tau-creep"),
+    (PB + ["--thickness", "0.5", "--nu", "0.5"], "--foundation"),
+    (PB + ["--thickness", "0.5", "--foundation", "bonded"], "--nu"),
+]
+CASES += MISSING
 
 
 def _argv(argv, tmp):
@@ -219,6 +235,14 @@ def test_refusal_is_one_short_line(argv, option, tmp_path, capsys):
     status = main(_argv(argv, tmp_path))
     err = capsys.readouterr().err
     assert problems(argv, option, status, err, tmp_path) == [], err
+
+
+@pytest.mark.parametrize("argv, option", MISSING, ids=[" ".join(a[-3:]) for a, _ in MISSING])
+def test_a_missing_option_is_said_in_one_form(argv, option, tmp_path, capsys):
+    _files(tmp_path)
+    assert main(_argv(argv, tmp_path)) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"{PROG} {argv[0]}: {option} is missing: "), err
 
 
 def test_at_least_sixty_lines():

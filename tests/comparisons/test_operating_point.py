@@ -84,6 +84,68 @@ def test_si_refusals_name_the_option_typed(capsys):
     assert rc == 2 and "point: --load -1.0: must be a finite pressure > 0 [Pa]" in err
 
 
+#: options that do not go together: (the point, the parameter refused, its value, why on the
+#: command line, why in Python)
+PAIRS = [
+    ({"load": 0.1, "speed": 1.0, "prony": "p.txt", "ratio": 3.0}, "ratio", "3.0",
+     "the --prony file fixes the material", "the prony file fixes the material"),
+    ({"load": 0.1, "speed": 1.0, "profile": "z.txt", "hk": 2.0}, "hk", "2.0",
+     "the --profile file fixes the indenter and its amplitude",
+     "the profile file fixes the indenter and its amplitude"),
+    ({"load": 0.1, "penetration": 0.5, "speed": 1.0}, "penetration", "0.5",
+     "give one of --load and --penetration", "give one of load and penetration"),
+]
+
+
+@pytest.mark.parametrize("point, name, value, cli_why, python_why", PAIRS,
+                         ids=[p[1] for p in PAIRS])
+def test_options_that_do_not_go_together_are_named_as_typed_at_each_door(
+        point, name, value, cli_why, python_why, capsys):
+    from comparisons import verify
+    from comparisons.verify._point import check_point
+    with pytest.raises(BadInput) as exc:
+        check_point(dict(point), op.CLI)
+    assert str(exc.value) == f"--{name} {value} is not allowed here: {cli_why}"
+    with pytest.raises(ValueError) as exc:  # the Python door: the keyword, never the option
+        verify.assert_agrees({"mu": 0.1}, dict(point))
+    assert str(exc.value) == f"{name}={value} is not allowed here: {python_why}"
+    assert "--" not in str(exc.value)
+    if name == "penetration":
+        return  # on the command line the parser refuses --load with --penetration itself
+    argv = ["verify", "--scalars", "s.jsonl"]  # and the command line says it in its own words
+    for k, v in point.items():
+        argv += [f"--{k}", str(v)]
+    rc, err = _cli(argv, capsys)
+    assert rc == 2 and err == f"python -m comparisons verify: --{name} {value} is not " \
+        f"allowed here: {cli_why}", err
+
+
+def test_command_line_only_pairs_name_their_options(capsys):
+    rc, err = _cli(["verify", "--scalars", "s.jsonl", "--case", "sls-partial-v1", "--ratio",
+                    "2"], capsys)
+    assert rc == 2 and err.endswith("verify: --ratio 2.0 is not allowed here: --case gives the "
+                                    "operating point"), err
+    rc, err = _cli(["verify", "--scalars", "s.jsonl", "--load", "0.1", "--speed", "1",
+                    "--prony", "p.txt", "--units", "SI"], capsys)
+    assert rc == 2 and "verify: --units SI is not allowed here: SI points are" in err, err
+    with pytest.raises(BadInput) as exc:  # point's own (the files are read before)
+        op.build("bem", load=0.3, speed=1.0, hk=2.0, profile="z.txt")
+    assert str(exc.value) == ("--hk is not allowed here: the --profile file fixes the indenter "
+                              "and its amplitude")
+
+
+def test_refusals_and_missing_options_have_one_form_at_each_door():
+    assert str(op.refuse("max_nodes", "why", "3")) == "--max-nodes 3 is not allowed here: why"
+    assert str(op.refuse("max_nodes", "why", "3", op.PYTHON)) == \
+        "max_nodes=3 is not allowed here: why"
+    assert str(op.refuse("units", "why")) == "--units is not allowed here: why"
+    assert str(op.missing("tau_creep", "needs")) == "--tau-creep is missing: needs"
+    assert str(op.missing("tau_creep", "needs", op.PYTHON)) == "tau_creep is missing: needs"
+    for name in op.PARAMETERS:
+        assert op.said(name) == op.option(name)
+        assert op.said(name, op.PYTHON) == op.PARAMETERS[name][op.PYTHON]
+
+
 def test_bem_only_options_are_refused_on_the_analytic_road_in_one_wording(capsys):
     for extra, option in ((["--rtol", "1e-3"], "--rtol"), (["--max-nodes", "64"], "--max-nodes"),
                           (["--thickness", "0.5", "--foundation", "bonded", "--nu", "0.5"],

@@ -597,9 +597,8 @@ def test_si_fields_with_material_and_geometry(tmp_path, capsys):
     point = json.loads((tmp_path / "rep2" / "verdict.json").read_text(encoding="utf-8"))["point"]
     assert point == pytest.approx({"load": 0.3, "speed": 1.0, "ratio": 3.0, "hk": 1.0}, rel=1e-14)
     rc, _, err = _run(capsys, "--case", CASE, "--fields", str(path), "--units", "SI")
-    assert rc == 2 and err.strip() == ("python -m comparisons verify: --E0: missing with --units "
-                                       "SI; allowed: --E0, --nu and --amplitude to convert SI "
-                                       "fields")
+    assert rc == 2 and err.strip() == ("python -m comparisons verify: --E0 is missing: --units "
+                                       "SI needs --E0, --nu and --amplitude to convert SI fields")
     # E0, ν and h are checked by themselves: no stand-in for an option not given (--Einf)
     common = ("--case", CASE, "--fields", str(path), "--units", "SI", "--nu", str(nu),
               "--amplitude", str(h), "--rtol", "1e-3", "--no-figures")
@@ -701,6 +700,14 @@ def test_the_point_is_refused_in_the_words_of_point(tmp_path, capsys, bad):
 def test_a_python_point_is_refused_by_its_keyword():
     with pytest.raises(ValueError, match=r"^load=-1.0 is not allowed: a mean pressure"):
         verify.assert_agrees({"mu": 0.1}, {"load": -1, "speed": 1.0})
+    # options that do not go together, and one not given: the keywords, never an option
+    with pytest.raises(ValueError) as info:
+        verify.assert_agrees({"mu": 0.1}, {"load": 0.1, "penetration": 0.5, "speed": 1.0})
+    assert str(info.value) == ("penetration=0.5 is not allowed here: give one of load and "
+                               "penetration")
+    with pytest.raises(ValueError) as info:
+        verify.assert_agrees({"mu": 0.1}, {"load": 0.1})
+    assert str(info.value) == "speed is missing: give the sliding speed V/V0"
 
 
 def test_long_messages_keep_the_prefix_and_stay_under_400_characters(tmp_path, capsys):

@@ -62,7 +62,7 @@ def test_a_bare_tau_option_is_refused_in_one_line(capsys, argv):
 
 def test_verify_needs_one_of_the_two_times(capsys):
     rc, _, err = _cli(capsys, "verify", "--scalars", "x.jsonl", *POINT_SI)
-    assert rc == 2 and "--tau-creep: missing with --units SI" in err and "--tau-relax" in err
+    assert rc == 2 and "--tau-creep is missing: --units SI needs" in err and "--tau-relax" in err
 
 
 # ------------------------------------------------------------------------ unit slips
