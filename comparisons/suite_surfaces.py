@@ -43,10 +43,9 @@ SURFACE_REFERENCES = {
     "closed_form": "full contact in closed form: each family of ridges is the line's Appendix B "
                    "at its speed component, w cos θ and w sin θ (docs/surfaces.md §2.2)",
 }
-#: the surface BEM's estimates are relative for these (mu_lateral's over |μ|)
-_SURFACE_RELATIVE = ("mu", "penetration", "contact_fraction")
-#: the surface reference's are relative for these (absolute for mu_lateral, contact_fraction)
-_REFERENCE_RELATIVE = ("mu", "penetration")
+#: the estimates of both surface solvers (the BEM's and the surface reference's) are relative
+#: for these, as the output contract says; mu_lateral's is the one apart (`_absolute`)
+_RELATIVE = ("mu", "penetration", "contact_fraction")
 
 SURFACE_RULE = (
     "Surface cases (a rigid periodic surface, three-dimensional contact) are solved by the "
@@ -103,6 +102,16 @@ def surface_references(case):
         raise SuiteError(f"case {case['name']}: references 'line' and 'closed_form' are not "
                          "allowed together: one exact road")
     return refs
+
+
+def _absolute(sol, k, lateral_scale, none=None):
+    """A surface solver's estimate of scalar ``k`` made absolute (``none`` where it gives
+    none): a relative one times |value|; mu_lateral's times ``lateral_scale`` (the BEM's is
+    over |μ|, the reference's absolute: 1)."""
+    e = (sol.error_estimate or {}).get(k)
+    if e is None:
+        return none
+    return float(e) * (abs(float(getattr(sol, k))) if k in _RELATIVE else lateral_scale)
 
 
 def _lateral_vanishes(point) -> bool:
@@ -269,19 +278,11 @@ def compute_surface(case, progress=None):
         if k in exact:
             continue
         vals = [float(getattr(r, k)) if r is not None else float("nan") for r in runs]
-        own = (fin.error_estimate or {}).get(k) if fin is not None else None
-        if own is not None:  # the BEM's own estimate, made absolute (mu_lateral's is over |μ|)
-            scale = abs(fin.mu) if k == "mu_lateral" else abs(vals[-1]) \
-                if k in _SURFACE_RELATIVE else 1.0
-            own = float(own) * scale
+        own = _absolute(fin, k, abs(fin.mu)) if fin is not None else None
         fv = None
         if four is not None:
-            if four.success:
-                e = float(four.error_estimate.get(k, math.nan))
-                fv = (float(getattr(four, k)), e * abs(float(getattr(four, k)))
-                      if k in _REFERENCE_RELATIVE else e)
-            else:
-                fv = (math.nan, math.nan)
+            fv = ((float(getattr(four, k)), _absolute(four, k, 1.0, math.nan))
+                  if four.success else (math.nan, math.nan))
         a = exact_vals[k] if exact_vals is not None else None
         scalars[k] = _surface_scalar(k, nodes, vals, own, a, fv)
         if scalars[k].get("agree") is False:

@@ -428,9 +428,10 @@ class Result:
     gamma : float
         γ of S(q) = γ + (1 − γ)P² (1 without the area correction).
     error_estimate : dict
-        Estimated quadrature errors: ``mu`` relative, ``contact_fraction`` absolute (the
-        difference from a rule with two thirds of the nodes per panel, an upper bound in
-        practice; see ``docs/persson.md``).
+        Estimated quadrature errors, relative for ``mu`` and ``contact_fraction`` (the
+        output contract's meaning): the difference from a rule with two thirds of the nodes
+        per panel, an upper bound in practice (see ``docs/persson.md``).  ``success`` asks
+        the relative one of μ and the absolute one of A/A0 to be at most `TOLERANCE`.
     nodes, width, panels : int, float, int
         The quadrature: nodes per panel, widest panel in ln q, and panels used.
     """
@@ -490,18 +491,21 @@ def _solve(spec, creep, ratio, load, speed, gamma, nodes, width):
     mu_c, g_c, _ = _integrate(spec, relax, load, speed, gamma, (2 * nodes) // 3, width)
     p_s, p_c = (float(erf(0.5 / math.sqrt(v))) if v > 0.0 else 1.0 for v in (g_s, g_c))
     err_mu = abs(mu - mu_c) / abs(mu) if mu != 0.0 else abs(mu - mu_c)
-    err = {"mu": err_mu, "contact_fraction": abs(p_s - p_c)}
+    err_area = abs(p_s - p_c)  # absolute: the bound of success, as it always was
+    # the output contract's estimate of a contact fraction is relative
+    err = {"mu": err_mu, "contact_fraction": err_area / p_s if p_s > 0.0 else
+           (0.0 if err_area == 0.0 else math.inf)}
     finite = all(math.isfinite(v) for v in (mu, g_s, p_s, err_mu))
-    ok = finite and max(err.values()) <= TOLERANCE
+    ok = finite and max(err_mu, err_area) <= TOLERANCE
+    said = (f"estimated quadrature error {err_mu:.1e} (mu, relative), {err_area:.1e} "
+            f"(contact_fraction, absolute; {err['contact_fraction']:.1e} relative)")
     if ok:
-        message = (f"converged: estimated quadrature error {err_mu:.1e} (mu, relative), "
-                   f"{err['contact_fraction']:.1e} (contact_fraction)")
+        message = f"converged: {said}"
     elif not finite:
         message = "failed: a non-finite result (mu, G or P)"
     else:
-        message = (f"failed: estimated quadrature error {err_mu:.1e} (mu, relative), "
-                   f"{err['contact_fraction']:.1e} (contact_fraction) above {TOLERANCE:g}; "
-                   "ask for more nodes or narrower panels (quadrature=)")
+        message = (f"failed: {said}, above {TOLERANCE:g}; ask for more nodes or narrower "
+                   "panels (quadrature=)")
     return Result(success=ok, status=0 if ok else 1, message=message, mu=mu,
                   contact_fraction=p_s, tau_f=mu * load, g_total=g_s, load=load, speed=speed,
                   hurst=spec.hurst, long_cutoff=spec.long_cutoff, rolloff=spec.rolloff,

@@ -297,3 +297,23 @@ def test_list_names_the_surface_cases_and_their_body(capsys):
     assert "| surface-bisinusoid-v1 |" in out and "| half-space | 6 | 7 |" in out
     assert ("layer d/Lx = 0.5 (kd = 3.142), bonded, ν = 0.5 | 4 | 5 | bem convergence + "
             "surface reference |") in out
+
+
+def test_both_solvers_estimates_are_made_absolute_in_one_convention():
+    """The surface BEM and the surface reference give their estimates as the output contract
+    says (relative for mu, penetration, contact_fraction); the suite makes them absolute the
+    same way, mu_lateral's apart (the BEM's is over |mu|, the reference's absolute)."""
+    from comparisons import suite_surfaces
+
+    class Solution:
+        mu, mu_lateral, penetration, contact_fraction = -0.25, 0.05, 0.8, 0.4
+        error_estimate = {"mu": 1e-3, "mu_lateral": 2e-3, "penetration": 1e-4,
+                          "contact_fraction": 1e-2}
+
+    made = {k: suite_surfaces._absolute(Solution, k, 0.25) for k in suite.SURFACE_KEYS}
+    assert made == pytest.approx({"mu": 2.5e-4, "mu_lateral": 5e-4, "penetration": 8e-5,
+                                  "contact_fraction": 4e-3}, rel=1e-15)
+    assert suite_surfaces._absolute(Solution, "mu_lateral", 1.0) == 2e-3
+    Solution.error_estimate = {}
+    assert suite_surfaces._absolute(Solution, "mu", 1.0) is None
+    assert math.isnan(suite_surfaces._absolute(Solution, "mu", 1.0, math.nan))

@@ -168,6 +168,18 @@ def test_quadrature_converged(load, speed, kw):
         assert res.contact_fraction == pytest.approx(other_area, rel=QUADRATURE)
 
 
+def test_the_contact_fractions_estimate_is_relative():
+    """The output contract's meaning: the difference from the rule of two thirds of the nodes
+    (13 of 20, the same panels) over the fraction itself; μ's likewise."""
+    kw = dict(load=1e-3, speed=0.01, **SURFACES[1])
+    res = persson.solve(**kw)
+    coarse = persson.solve(quadrature=(13, persson.WIDTH), **kw)
+    assert res.success and 0.0 < res.contact_fraction < 0.1  # relative ≠ absolute here
+    assert res.error_estimate["contact_fraction"] == \
+        abs(res.contact_fraction - coarse.contact_fraction) / res.contact_fraction
+    assert res.error_estimate["mu"] == abs(res.mu - coarse.mu) / abs(res.mu)
+
+
 def test_a_coarse_rule_is_flagged_not_passed_off():
     """The smallest rule, 8 nodes on panels e² wide, misses by 1.4e-8: its estimate (from 5
     nodes) is above that, so the result says it failed instead of passing it off."""

@@ -36,9 +36,10 @@ class SurfaceSolution:
         the peak σ(1 − ν²)/E0, all from the finest grid or extrapolated (see
         ``extrapolated``).
     error_estimate : dict
-        Per scalar: relative for load, penetration, tau_f, mu, max_pressure; absolute for
-        mu_lateral, contact_fraction; None for n_patches (an integer: ``warnings`` say when
-        the grids disagree).  See `richardson`.
+        Per scalar: relative for load, penetration, tau_f, mu, max_pressure and
+        contact_fraction (the output contract's meaning); absolute for mu_lateral (it can
+        vanish); None for n_patches (an integer: ``warnings`` say when the grids disagree).
+        See `richardson`.
     observed_order, extrapolated : dict
         Per scalar: the order of the last three grids and whether the value is extrapolated.
     nodes : int

@@ -22,9 +22,11 @@ _TWO_PI = 2.0 * math.pi
 
 #: a contact patch with fewer points than this on the finest grid is warned of
 _MIN_PATCH_POINTS = 16
-#: scalars combined over the grids: relative estimates, then absolute ones
-_RELATIVE = ("load", "penetration", "tau_f", "mu", "max_pressure")
-_ABSOLUTE = ("mu_lateral", "contact_fraction")
+#: scalars combined over the grids: relative estimates (the contact fraction's too, as the
+#: output contract and the surface BEM give it), then absolute ones (the lateral force can
+#: vanish)
+_RELATIVE = ("load", "penetration", "tau_f", "mu", "max_pressure", "contact_fraction")
+_ABSOLUTE = ("mu_lateral",)
 #: diagnostics averaged over a level's grids like the scalars
 _DIAGNOSTIC = ("mu_direct", "mu_lateral_direct", "contact_fraction_nodal")
 #: every level is solved on two grids, the surface moved by these fractions of a panel along
