@@ -22,7 +22,8 @@ import sys
 
 import numpy as np
 
-from viscosine import Fields, __version__
+import viscosine
+from viscosine import Fields
 from viscosine.fields import WIDTH  # the cells of a non-uniform grid (optional)
 
 from . import gate
@@ -131,7 +132,8 @@ class Store:
             self._atomic(self._path(k, "npz"), lambda fh: np.savez(
                 fh, **{n: np.asarray(data[n], dtype=float) for n in names}), "wb")
         doc = {"spec": op.public(spec), "ok": bool(out["ok"]), "record": out["record"],
-               "error": out["error"], "seconds": out.get("seconds"), "version": __version__}
+               "error": out["error"], "seconds": out.get("seconds"),
+               "version": viscosine.__version__}
         text = json.dumps(doc, allow_nan=False)
         self._atomic(self._path(k, "json"), lambda fh: fh.write(text), "w")
 
@@ -153,8 +155,8 @@ def _check_doc(doc, spec):
         return "not a stored result (keys spec, ok, record, error expected)"
     if doc["spec"] != op.public(spec):
         return "filed under this spec but holds another one"
-    if doc.get("version") != __version__:  # a record's keys may mean other things in another
-        return f"stored by viscosine {doc.get('version')}, not {__version__}"
+    if doc.get("version") != viscosine.__version__:  # keys may mean other things in another
+        return f"stored by viscosine {doc.get('version')}, not {viscosine.__version__}"
     if not isinstance(doc["ok"], bool):
         return "ok is not true/false"
     if doc["ok"]:

@@ -139,8 +139,11 @@ def run(args):
         from . import materials_fits
         return materials_fits.run()
     if args.materials_peers:
-        from . import materials_peers
-        return materials_peers.run()
+        from . import materials_peers, materials_peers_time
+        status = materials_peers.run()
+        print()
+        materials_peers_time.run()
+        return status
     if args.materials:
         from . import materials
         return materials.materials(200 if args.points is None else args.points,

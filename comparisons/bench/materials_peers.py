@@ -11,7 +11,7 @@ objectives are of that kind.  Printed: terms, RMS and largest relative residual 
 of E', E'' and tan delta, pyvisco's own figure of merit (its ``prony.ls_res``: the sum of squared
 residuals of E' and E'' divided by its E_0, the storage modulus at the highest frequency), the
 Kramers-Kronig figure of the data (`FitReport.kk_range`), and per decade the RMS residuals of
-each fitter.  Then the time-domain sets (E(t) master curves), `materials_peers_time`.
+each fitter.  The time-domain sets (E(t) master curves) follow, from `materials_peers_time`.
 
 pyvisco's tables were made once by pyvisco 2.1.3 in a separate environment (pyvisco is no
 dependency of viscosine); each carries, in a ``# ls_res = ...`` line, pyvisco's own residual,
@@ -187,7 +187,4 @@ def run() -> int:
         for line in decade_table(name, res):
             print(line)
         print(f"viscosine: {res['fit'].summary()}; {res['fitters'][OURS]['seconds']:.2f} s")
-    print()
-    from . import materials_peers_time    # here: it imports this module (E(t) sets)
-    materials_peers_time.run()
     return 0
