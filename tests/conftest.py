@@ -8,6 +8,8 @@ LIMIT        the semi-analytic solution against an exact limit (Westergaard, Hun
 BEM tiers are discretisation errors: they are measured by the convergence study and written
 next to that measurement in the BEM and cross-solver tests.
 """
+import pytest
+
 ROUNDOFF = 1e-12
 QUADRATURE = 1e-10
 LIMIT = 1e-9
@@ -27,14 +29,49 @@ def _named(item, config):
 
 def pytest_collection_modifyitems(config, items):
     """Leave out the tests marked slow unless --slow is given, a -m expression chooses the
-    tests, or the test is named by its node id."""
-    if config.getoption("--slow") or config.option.markexpr:
+    tests, or the test is named by its node id; under --dist loadfile, heavy files first."""
+    if not (config.getoption("--slow") or config.option.markexpr):
+        slow = [i for i in items if i.get_closest_marker("slow") and not _named(i, config)]
+        if slow:
+            config.hook.pytest_deselected(items=slow)
+            left_out = set(slow)
+            items[:] = [i for i in items if i not in left_out]
+    _heavy_files_first(config, items)
+
+
+def _loadfile(config):
+    return getattr(config.option, "dist", "no") == "loadfile"
+
+
+def pytest_configure(config):
+    """Under --dist loadfile the files are queued in the order the processes collect them
+    (`_heavy_files_first`), not re-sorted by xdist by their number of tests."""
+    if _loadfile(config) and hasattr(config.option, "loadscopereorder"):
+        config.option.loadscopereorder = False
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_configure_node(node):
+    """Tell each xdist process (whose own --dist reads "no") to order its collection."""
+    if _loadfile(node.config):
+        node.workerinput["heavy_files_first"] = True
+
+
+def _heavy_files_first(config, items):
+    """Queue the files holding slow tests first (the whole suite recomputed, 2^22 panels, ...),
+    then the others by their number of tests (xdist's own order): a minutes-long file started
+    last under --dist loadfile would leave the other core idle at the end of the run."""
+    if not getattr(config, "workerinput", {}).get("heavy_files_first"):
         return
-    slow = [i for i in items if i.get_closest_marker("slow") and not _named(i, config)]
-    if slow:
-        config.hook.pytest_deselected(items=slow)
-        left_out = set(slow)
-        items[:] = [i for i in items if i not in left_out]
+    count, slow, first = {}, set(), {}
+    for i in items:  # the slow tests still here are the ones this run runs
+        f = i.nodeid.split("::", 1)[0]
+        count[f] = count.get(f, 0) + 1
+        first.setdefault(f, len(first))
+        if i.get_closest_marker("slow"):
+            slow.add(f)
+    items.sort(key=lambda i: (lambda f: (f not in slow, -count[f], first[f]))(
+        i.nodeid.split("::", 1)[0]))
 
 
 def pytest_report_header(config):
@@ -44,8 +81,6 @@ def pytest_report_header(config):
 
 # ---------------------------------------------------------------------------- both cores
 import os  # noqa: E402
-
-import pytest  # noqa: E402
 
 
 @pytest.hookimpl(tryfirst=True)
