@@ -188,9 +188,7 @@ def read(path, *, temperature=None, wlf=None, shift_table=None, max_residual=Non
             creep = vm.read_creep(path, option="prony", data=data)
             terms = len([j for j in creep.J if j > 0.0])
             # the hand-off to the BEM drops a term below its floor, as for a fitted series
-            creep, weights = creep.without_negligible(roads.term_floor())
-            extra["dropped_terms"] = _dropped(weights)
-            prony = roads.prony(*creep)
+            prony, extra["dropped_terms"] = _for_bem(creep)
             model = None
             e_ref = 1.0
             if si:  # compliances in 1/Pa: units of the relaxed modulus 1/J0
@@ -448,9 +446,7 @@ def bem_series(model, e_ref):
     refuses (a fit's negligible term, e.g. 1e-14 J(0+)), and the record's ``dropped_terms``
     (None when none): their count and largest weight w = J_k/J(0+).  Each moves the compliance
     J*(ω) by at most w J(0+), at most w relative to |J*| (`Creep.without_negligible`)."""
-    floor = roads.term_floor()                 # the floor the BEM's check applies
-    series, weights = model.creep(E_ref=e_ref, tau_ref=1.0).without_negligible(floor)
-    return roads.prony(*series), _dropped(weights)
+    return _for_bem(model.creep(E_ref=e_ref, tau_ref=1.0))
 
 
 def negligible_dropped(prony):
@@ -458,9 +454,15 @@ def negligible_dropped(prony):
     terms below the BEM's floor, and the record's ``dropped_terms`` (None when none), as
     `bem_series` does for a --material file."""
     from viscosine import materials as vm
-    series, weights = vm.Creep(prony.J0, tuple(prony.J), tuple(prony.tau)).without_negligible(
-        roads.term_floor())
-    return (prony, None) if not weights else (roads.prony(*series), _dropped(weights))
+    out = _for_bem(vm.Creep(prony.J0, tuple(prony.J), tuple(prony.tau)))
+    return (prony, None) if out[1] is None else out
+
+
+def _for_bem(creep):
+    """The one hand-off of a creep series to the BEM: ``(bem.Prony, dropped)`` without the terms
+    below the floor its check applies (`roads.term_floor`), and the record's ``dropped_terms``."""
+    series, weights = creep.without_negligible(roads.term_floor())
+    return roads.prony(*series), _dropped(weights)
 
 
 def _dropped(weights):
