@@ -34,38 +34,41 @@ def _wrap(x):
 
 
 def _recovery(powers, z):
-    """R_p(z) = Φ_p(z)/z^p with Φ_p(z) = ∫_0^z e^{−(z−u)} u^p du, for each p (rows) and z ≥ 0.
+    """R_p(z) = Φ_p(z)/z^p with Φ_p(z) = ∫_0^z e^{−(z−u)} u^p du, for each p of ``powers`` (a
+    1-D array of half-integers) and z ≥ 0 of any shape: an array of shape powers.shape + z.shape.
 
     Series z Σ_k (−z)^k / ((p+1)…(p+1+k)) below z = max p + 8 (it loses at most ~3 digits
     there); above, the upward recurrence R_p = 1 − (p/z) R_{p−1} from R_{−1/2} = 2√z F(√z)
-    (F Dawson's integral), stable once z exceeds p.  R_p(0) = 0, R_p(∞) = 1.
+    (F Dawson's integral), stable once z exceeds p.  R_p(0) = 0, R_p(∞) = 1.  Every power (and
+    every Prony term's z) in one array operation: the edge fit calls this for each trial edge.
     """
     z = np.asarray(z, dtype=float)
-    out = np.empty((len(powers), z.size))
-    big = z > max(powers) + 8.0
+    q = np.asarray(powers, dtype=float).reshape((-1,) + (1,) * z.ndim)
+    out = np.empty(q.shape[:1] + z.shape)
+    big = z > q.max() + 8.0
     if np.any(big):
         zb = z[big]
         r = 2.0 * np.sqrt(zb) * dawsn(np.sqrt(zb))
         p = -0.5
         table = {}
-        while p < max(powers):
+        while p < q.max():
             p += 1.0
             r = 1.0 - (p / zb) * r
             table[p] = r
-        for k, q in enumerate(powers):
-            out[k, big] = table[q]
+        for k, qk in enumerate(q.ravel()):
+            out[k][big] = table[float(qk)]
     small = ~big
     if np.any(small):
         zs = z[small]
+        qs = q.reshape(-1, 1)
         # the alternating terms fall below 1e-17 of the sum within 3 max z + 40 of them (z < 15)
         nterms = int(3.0 * zs.max()) + 40
-        for k, q in enumerate(powers):
-            term = np.full(zs.size, 1.0 / (q + 1.0))
-            total = term.copy()
-            for j in range(1, nterms):
-                term *= -zs / (q + 1.0 + j)
-                total += term
-            out[k, small] = zs * total
+        term = np.broadcast_to(1.0 / (qs + 1.0), (qs.size, zs.size)).copy()
+        total = term.copy()
+        for j in range(1, nterms):
+            term *= -zs / (qs + 1.0 + j)
+            total += term
+        out[:, small] = zs * total
     return out
 
 
@@ -84,13 +87,15 @@ def _edge_basis(d, powers, trailing, creep):
     if not trailing or not creep[1]:
         return cols
     jplus, terms = creep
-    factor = np.full((d.size, powers.size), jplus)
-    for j_i, length in terms:
-        if length == 0.0:
-            factor += j_i
-        else:
-            factor += j_i * _recovery(list(powers), d / length).T
-    return cols * factor
+    weights = np.array([j_i for j_i, _ in terms])
+    lengths = np.array([length for _, length in terms])
+    # a term of zero length has recovered at once: J_i joins J(0+)
+    factor = np.full((powers.size, d.size), jplus + weights[lengths == 0.0].sum())
+    live = lengths != 0.0
+    if np.any(live):
+        r = _recovery(powers, d[None, :] / lengths[live][:, None])  # (power, term, point)
+        factor += np.einsum("t,ptm->pm", weights[live], r)
+    return cols * factor.T
 
 
 def _fit_edge(xs, g, lo, hi, side, trailing, creep, nbasis):
