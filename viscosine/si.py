@@ -99,8 +99,11 @@ def creep_time(*, E0, Einf, tau=None, tau_creep=None, tau_relax=None) -> float:
         raise ValueError(f"tau={tau!r} is not allowed: which time? give {TIME_NAMES}")
     given = {k: v for k, v in (("tau_creep", tau_creep), ("tau_relax", tau_relax))
              if v is not None}
+    if not given:  # the one form of a parameter not given, as at the command line
+        raise ValueError(f"tau_creep is missing: give exactly one time of the standard linear "
+                         f"solid, {TIME_NAMES}")
     if len(given) != 1:
-        shown = ", ".join(f"{k}={v!r}" for k, v in given.items()) or "tau_creep=None"
+        shown = ", ".join(f"{k}={v!r}" for k, v in given.items())
         raise ValueError(f"{shown} is not allowed: give exactly one time of the standard linear "
                          f"solid, {TIME_NAMES}")
     (name, value), = given.items()
