@@ -25,12 +25,40 @@ Transform convention
 from __future__ import annotations
 
 import math
+import os
 
 import numpy as np
 import scipy.fft as sfft
 
-#: FFT threads: both cores of the reference machine (the transforms are most of the work)
+#: FFT threads when VISCOSINE_FFT_THREADS is not set: both cores of the reference machine (the
+#: transforms are most of the work; on two idle cores a 1024² pair takes 0.033 s, not 0.041 s)
 WORKERS = 2
+#: the environment variable that sets them: 1 where other processes already fill the cores
+#: (the local process pools of viscosine's commands, the test processes), where a second
+#: thread costs CPU (0.066 against 0.041 CPU s a 1024² pair) and gains no time
+THREADS_VARIABLE = "VISCOSINE_FFT_THREADS"
+
+
+def fft_threads() -> int:
+    """The FFT threads of a surface transform: ``$VISCOSINE_FFT_THREADS`` when it is a whole
+    number >= 1, else `WORKERS`.  Read at each transform, so a process pool's initializer
+    can set it; the results are the same bit for bit on any number of threads.
+
+    Raises
+    ------
+    ValueError
+        ``VISCOSINE_FFT_THREADS`` set to anything but a whole number >= 1.
+    """
+    text = os.environ.get(THREADS_VARIABLE)
+    if text is None:
+        return WORKERS
+    try:
+        n = int(text)
+    except ValueError:
+        n = 0
+    if n < 1:
+        raise ValueError(f"{THREADS_VARIABLE}={text!r} is not allowed: a whole number >= 1")
+    return n
 #: rows of the symbol made at a time (its temporaries stay a few MB at any grid size)
 _ROWS = 256
 
@@ -122,13 +150,13 @@ class SpectralOperator:
             f[0, 1:] /= self.symbol[0, 1:]
         else:
             f *= self.symbol
-        out = sfft.irfft2(f, s=self.shape, axes=(0, 1), overwrite_x=True, workers=WORKERS)
+        out = sfft.irfft2(f, s=self.shape, axes=(0, 1), overwrite_x=True, workers=fft_threads())
         self.transforms += 1
         return out.reshape(-1)
 
     def _forward(self, v: np.ndarray) -> np.ndarray:
         self.transforms += 1
-        return sfft.rfft2(v.reshape(self.shape), axes=(0, 1), workers=WORKERS)
+        return sfft.rfft2(v.reshape(self.shape), axes=(0, 1), workers=fft_threads())
 
     def apply(self, sigma: np.ndarray) -> np.ndarray:
         """k u = C sigma (flattened; mean of the result exactly 0)."""

@@ -159,6 +159,13 @@ class SerialExecutor(Executor):
         return futures[:1]
 
 
+def _one_fft_thread():
+    """A pool process's initializer: one FFT thread per process (the surface BEM's, read from
+    VISCOSINE_FFT_THREADS), since the processes already fill the cores; a value the user set
+    is kept."""
+    os.environ.setdefault("VISCOSINE_FFT_THREADS", "1")
+
+
 class ProcessExecutor(Executor):
     """A local pool of ``workers`` processes (concurrent.futures)."""
 
@@ -169,7 +176,8 @@ class ProcessExecutor(Executor):
     def _pool_(self):
         from concurrent.futures import ProcessPoolExecutor
         if self._pool is None:
-            self._pool = ProcessPoolExecutor(max_workers=self.workers)
+            self._pool = ProcessPoolExecutor(max_workers=self.workers,
+                                             initializer=_one_fft_thread)
         return self._pool
 
     def _submit(self, fn, chunk):

@@ -8,6 +8,8 @@ LIMIT        the semi-analytic solution against an exact limit (Westergaard, Hun
 BEM tiers are discretisation errors: they are measured by the convergence study and written
 next to that measurement in the BEM and cross-solver tests.
 """
+import os
+
 import pytest
 
 ROUNDOFF = 1e-12
@@ -45,9 +47,14 @@ def _loadfile(config):
 
 def pytest_configure(config):
     """Under --dist loadfile the files are queued in the order the processes collect them
-    (`_heavy_files_first`), not re-sorted by xdist by their number of tests."""
+    (`_heavy_files_first`), not re-sorted by xdist by their number of tests; an xdist process
+    runs the surface FFTs on one thread."""
     if _loadfile(config) and hasattr(config.option, "loadscopereorder"):
         config.option.loadscopereorder = False
+    if hasattr(config, "workerinput"):
+        # the test processes fill the cores: one FFT thread each (the surface BEM's; the same
+        # bits on any number, tests/bem/test_bem_surface.py), and the commands they start
+        os.environ.setdefault("VISCOSINE_FFT_THREADS", "1")
 
 
 @pytest.hookimpl(optionalhook=True)
@@ -80,7 +87,6 @@ def pytest_report_header(config):
 
 
 # ---------------------------------------------------------------------------- both cores
-import os  # noqa: E402
 
 
 @pytest.hookimpl(tryfirst=True)

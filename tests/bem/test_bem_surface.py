@@ -9,6 +9,7 @@ scaling of the dimensionless groups, Hertz at vanishing load, a thick layer, and
 Tolerances of the discretisation come from the measurements written beside them.
 """
 import math
+import re
 
 import numpy as np
 import pytest
@@ -99,6 +100,31 @@ def test_operator_is_real_and_mirror_symmetric():
     assert np.max(np.abs(um - mirror(u))) < ROUNDOFF
     back = op.pseudo_solve(u.reshape(-1)).reshape(nx, ny)
     assert np.max(np.abs(back - (f - f.mean()))) < 1e-11
+
+
+def test_fft_threads_change_no_bit_and_a_bad_setting_is_refused(monkeypatch):
+    """The tests and the commands' process pools run the surface FFTs on one thread
+    (VISCOSINE_FFT_THREADS=1), a user's single solve on two: the same bits either way, on a
+    grid large enough for pocketfft to split the work (the refused value names the variable)."""
+    from bem import _surface_operator as S
+    nx, ny = 256, 128
+    op = SpectralOperator(surface_symbol(nx, ny, 1.0, SLS3.j_plus, SLS3.terms, 1.0, 0.3),
+                          (nx, ny))
+    f = np.random.default_rng(1).standard_normal(nx * ny)
+    got = {}
+    for n in ("1", "2", "3"):
+        monkeypatch.setenv(S.THREADS_VARIABLE, n)
+        assert S.fft_threads() == int(n)
+        got[n] = (op.apply(f.copy()), op.pseudo_solve(f.copy()))
+    for n in ("2", "3"):
+        assert all(np.array_equal(a, b) for a, b in zip(got["1"], got[n])), n
+    monkeypatch.delenv(S.THREADS_VARIABLE)
+    assert S.fft_threads() == S.WORKERS == 2
+    for bad in ("0", "-1", "two", "1.5", ""):
+        monkeypatch.setenv(S.THREADS_VARIABLE, bad)
+        with pytest.raises(ValueError, match=rf"^VISCOSINE_FFT_THREADS='{re.escape(bad)}' is "
+                                             r"not allowed: a whole number >= 1$"):
+            op.apply(f.copy())
 
 
 # --------------------------------------------------------------------------------------------
