@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def plot_convergence(fig, conv):
@@ -40,6 +40,7 @@ def plot_convergence(fig, conv):
     return fig
 
 
+@kept_when_unchanged
 def write_figure(path_png, conv):
     """`plot_convergence` on a figure 4.6 in wide per convergence point, written to
     ``path_png``."""

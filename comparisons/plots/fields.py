@@ -6,7 +6,7 @@ Units: x/λ, σ(1 − ν²)/E0 (positive in compression), v/h (positive into the
 """
 from __future__ import annotations
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def plot_fields(fig, rows):
@@ -52,6 +52,7 @@ def plot_fields(fig, rows):
     return fig
 
 
+@kept_when_unchanged
 def write_figure(path_png, rows):
     """`plot_fields` on a figure 4.2 in wide per field point, written to ``path_png``."""
     fig = pyplot().figure(figsize=(4.2 * len(rows), 6.0))

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 FOUNDATIONS = ("bonded", "frictionless")
 
@@ -113,16 +113,19 @@ def _write(path_png, draw, data):
     return save(fig, path_png)
 
 
+@kept_when_unchanged
 def write_friction(path_png, data):
     """`plot_friction` on an 11 × 4.4 in figure, written to ``path_png``."""
     return _write(path_png, plot_friction, data)
 
 
+@kept_when_unchanged
 def write_contact(path_png, data):
     """`plot_contact` on an 11 × 4.4 in figure, written to ``path_png``."""
     return _write(path_png, plot_contact, data)
 
 
+@kept_when_unchanged
 def write_full_contact(path_png, data):
     """`plot_full_contact` on an 11 × 4.4 in figure, written to ``path_png``."""
     return _write(path_png, plot_full_contact, data)

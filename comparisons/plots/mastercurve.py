@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import os
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def plot(table, *, axes=None, title=None):
@@ -53,6 +53,7 @@ def plot(table, *, axes=None, title=None):
     return ax, axr
 
 
+@kept_when_unchanged
 def write_figure(path_png, table):
     """`plot` written to ``path_png`` (Agg, 110 dpi)."""
     fig, axes = pyplot().subplots(1, 2, figsize=(11.0, 4.4), sharey=True)

@@ -49,7 +49,7 @@ from viscosine.checks import bad, real, reals
 from .. import roads
 from .._errors import Failed
 from .._io import stderr
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def _terms(J0, terms):
@@ -173,6 +173,7 @@ def prony_numbers(path):
     return float(p.J0), [(float(j), float(t)) for j, t in zip(p.J, p.tau)]
 
 
+@kept_when_unchanged
 def material_figure(path_png, J0, terms, *, speeds=(), speeds_label="sliding frequency kV",
                     title=None):
     """Write the material figure to ``path_png`` (Agg backend, 110 dpi)."""
@@ -289,6 +290,7 @@ def report_fit(material, folder, command):
     return path
 
 
+@kept_when_unchanged
 def dma_fit_figure(path_png, curve, model, *, title=None):
     """Write `plot_dma_fit` above `plot_dma_residuals` to ``path_png`` (Agg backend, 110 dpi);
     returns the path."""

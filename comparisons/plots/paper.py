@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def _style(ax, xlabel, ylabel, title, logx=False):
@@ -143,10 +143,12 @@ def fig12(ax, curves):
     return _speed_sweep(ax, curves, "μ", "Figure 12: friction coefficient against speed")
 
 
+@kept_when_unchanged
 def write_figure(path_png, draw, data):
     """``draw(ax, data)`` (one of the figures above) on a 6.4 × 4.4 in figure, written to
     ``path_png`` (110 dpi); returns the figure's title (the report's caption starts with it)."""
     fig, ax = pyplot().subplots(figsize=(6.4, 4.4))
     draw(ax, data)
-    save(fig, path_png)
-    return ax.get_title()
+    title = ax.get_title()
+    save(fig, path_png, returned=title)  # kept in the PNG: a figure kept returns it too
+    return title

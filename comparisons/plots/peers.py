@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def plot_dt_convergence(ax, data):
@@ -43,6 +43,7 @@ def plot_dt_convergence(ax, data):
     return ax
 
 
+@kept_when_unchanged
 def write_figure(path_png, data):
     """`plot_dt_convergence` written to ``path_png`` (6.4 × 4.4 in, 110 dpi); returns the path."""
     fig, ax = pyplot().subplots(figsize=(6.4, 4.4))

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
 def plot_shifts(sp, ax=None):
@@ -60,6 +60,7 @@ def plot_wlf_residual(sp, ax=None):
     return ax
 
 
+@kept_when_unchanged
 def shifts_figure(path_png, sp, *, title=None):
     """`plot_shifts` above `plot_wlf_residual`, written to ``path_png``; returns the path."""
     fig, (ax, rax) = pyplot().subplots(2, 1, figsize=(6.5, 6.0), sharex=True,

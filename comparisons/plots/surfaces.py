@@ -16,9 +16,10 @@ import math
 
 import numpy as np
 
-from . import pyplot, save
+from . import kept_when_unchanged, pyplot, save
 
 
+@kept_when_unchanged
 def write_pressure_map(path, fields, direction, caption=""):
     """σ on the cell (colour), the contact outline (σ > 0, white) and an arrow along V."""
     plt = pyplot()
@@ -40,6 +41,7 @@ def write_pressure_map(path, fields, direction, caption=""):
     return save(fig, path)
 
 
+@kept_when_unchanged
 def write_friction(path, curves):
     """μ against V/V0, one line per load: ``curves`` = [{"load", "speed", "mu"}, ...]."""
     plt = pyplot()
@@ -55,6 +57,7 @@ def write_friction(path, curves):
     return save(fig, path)
 
 
+@kept_when_unchanged
 def write_direction(path, data):
     """μ and the lateral coefficient against θ: ``data`` = {"direction", "mu", "mu_lateral"}."""
     plt = pyplot()
@@ -69,6 +72,7 @@ def write_direction(path, data):
     return save(fig, path)
 
 
+@kept_when_unchanged
 def write_persson(path, curves):
     """μ (left) and the contact fraction (right) against V/V0 per load: the BEM's mean over
     seeds with its spread (bars: min … max), Persson's theory as lines.  ``curves`` =

@@ -74,3 +74,66 @@ def test_plot_material_draws_on_the_given_axes(tmp_path):
     plt.close(fig)
     path = _figures.material_figure(tmp_path / "m.png", *SLS3, speeds=[1.0])
     assert path.stat().st_size > 10_000
+
+
+# ------------------------------------------------------------------------------ kept figures
+_DRAWN = []  # the paths the writer below drew (a global: a closure would be an input)
+
+
+def _draw_a(ax, data):
+    ax.plot(data["x"], data["y"])
+    ax.set_title(f"a {data['label']}")
+
+
+def _draw_b(ax, data):
+    ax.semilogy(data["x"], data["y"])
+    ax.set_title(f"b {data['label']}")
+
+
+def _write_figure(path_png, draw, data, *, extra=None):
+    from comparisons import plots
+    _DRAWN.append(path_png)
+    fig, ax = plots.pyplot().subplots(figsize=(2.0, 2.0))
+    draw(ax, data)
+    title = ax.get_title()
+    plots.save(fig, path_png, returned=title)
+    return title
+
+
+def test_a_figure_drawn_from_the_same_inputs_is_kept_and_any_change_redraws_it(tmp_path,
+                                                                             monkeypatch):
+    """`kept_when_unchanged`: the same inputs keep the PNG (not drawn, not touched, the same
+    value returned); another value, another array, another drawing, another keyword, a PNG of
+    other inputs, a PNG without the entry, a changed plots source and an input the digest
+    cannot read draw it again."""
+    from comparisons import plots
+    # the writer and its drawings must be of the plots package for their code to be digested
+    for f in (_draw_a, _draw_b, _write_figure):
+        monkeypatch.setattr(f, "__module__", "comparisons.plots.test")
+    write = plots.kept_when_unchanged(_write_figure)
+    png = tmp_path / "f.png"
+    data = {"x": np.arange(5.0), "y": np.arange(5.0) ** 2 + 1.0, "label": "μ"}
+
+    def run(*args, **kw):
+        n = len(_DRAWN)
+        out = write(str(png), *args, **kw)
+        return out, len(_DRAWN) > n, png.stat().st_mtime_ns
+
+    title, did, t0 = run(_draw_a, data)
+    assert did and title == "a μ"
+    assert run(_draw_a, {**data})[:2] == ("a μ", False) and png.stat().st_mtime_ns == t0
+    changed = [((_draw_a, {**data, "label": "ν"}), {}),
+               ((_draw_a, {**data, "y": data["y"] * (1.0 + 1e-15)}), {}),
+               ((_draw_b, data), {}),
+               ((_draw_a, data), {"extra": 1.0})]
+    for args, kw in changed:
+        assert run(*args, **kw)[1], (args, kw)
+        assert run(*args, **kw)[1] is False, (args, kw)  # and then kept
+    plots.pyplot().figure().savefig(png)                   # a PNG without the entry
+    assert run(_draw_a, data)[1]
+    png.write_bytes(b"not a png")
+    assert run(_draw_a, data)[1]
+    monkeypatch.setattr(plots, "_source", lambda: "another source")
+    assert run(_draw_a, data)[1] and not run(_draw_a, data)[1]
+    for _ in range(2):  # an object the digest cannot read: drawn every time
+        assert run(_draw_a, {**data, "label": object()})[1]
