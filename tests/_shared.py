@@ -50,12 +50,14 @@ def run_cli(*args, cwd):
 
 
 def quick_report(tmp_path_factory):
-    """`python -m comparisons report --quick` into a shared folder: (report folder, the finished
-    process) — its exit status, standard output and standard error as the run left them."""
+    """`python -m comparisons report --quick --workers 1` into a shared folder: (report folder,
+    the finished process) — its exit status, standard output and standard error as the run left
+    them.  One process for its runs: the other test process fills the second core (the runs in
+    two processes: test_cli.py's sweep, test_suite.py's check)."""
     def make(folder):
         out = folder / "report"
         out.mkdir()
-        proc = run_cli("report", "--quick", "--out", str(out), cwd=out)
+        proc = run_cli("report", "--quick", "--workers", "1", "--out", str(out), cwd=out)
         (folder / "proc.json").write_text(json.dumps(
             {"args": proc.args, "returncode": proc.returncode, "stdout": proc.stdout,
              "stderr": proc.stderr}))
