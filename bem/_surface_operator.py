@@ -37,12 +37,14 @@ WORKERS = 2
 #: (the local process pools of viscosine's commands, the test processes), where a second
 #: thread costs CPU (0.066 against 0.041 CPU s a 1024² pair) and gains no time
 THREADS_VARIABLE = "VISCOSINE_FFT_THREADS"
+#: rows of the symbol made at a time (its temporaries stay a few MB at any grid size)
+_ROWS = 256
 
 
 def fft_threads() -> int:
-    """The FFT threads of a surface transform: ``$VISCOSINE_FFT_THREADS`` when it is a whole
-    number >= 1, else `WORKERS`.  Read at each transform, so a process pool's initializer
-    can set it; the results are the same bit for bit on any number of threads.
+    """The FFT threads of a surface operator: ``$VISCOSINE_FFT_THREADS`` when it is a whole
+    number >= 1, else `WORKERS`.  Read when an operator is made (a process pool's initializer
+    sets it before any solve); the results are the same bit for bit on any number of threads.
 
     Raises
     ------
@@ -59,8 +61,6 @@ def fft_threads() -> int:
     if n < 1:
         raise ValueError(f"{THREADS_VARIABLE}={text!r} is not allowed: a whole number >= 1")
     return n
-#: rows of the symbol made at a time (its temporaries stay a few MB at any grid size)
-_ROWS = 256
 
 
 def _wave_numbers(nx, ny, aspect):
@@ -142,6 +142,7 @@ class SpectralOperator:
         self.max_inverse = float(1.0 / np.min(mag))
         del mag
         self.transforms = 0  # rfft2 and irfft2 made (the cost the bench reports, in pairs)
+        self.threads = fft_threads()
 
     def _through(self, f: np.ndarray, inverse: bool) -> np.ndarray:
         if inverse:
@@ -150,13 +151,13 @@ class SpectralOperator:
             f[0, 1:] /= self.symbol[0, 1:]
         else:
             f *= self.symbol
-        out = sfft.irfft2(f, s=self.shape, axes=(0, 1), overwrite_x=True, workers=fft_threads())
+        out = sfft.irfft2(f, s=self.shape, axes=(0, 1), overwrite_x=True, workers=self.threads)
         self.transforms += 1
         return out.reshape(-1)
 
     def _forward(self, v: np.ndarray) -> np.ndarray:
         self.transforms += 1
-        return sfft.rfft2(v.reshape(self.shape), axes=(0, 1), workers=fft_threads())
+        return sfft.rfft2(v.reshape(self.shape), axes=(0, 1), workers=self.threads)
 
     def apply(self, sigma: np.ndarray) -> np.ndarray:
         """k u = C sigma (flattened; mean of the result exactly 0)."""

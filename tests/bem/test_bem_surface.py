@@ -108,23 +108,23 @@ def test_fft_threads_change_no_bit_and_a_bad_setting_is_refused(monkeypatch):
     grid large enough for pocketfft to split the work (the refused value names the variable)."""
     from bem import _surface_operator as S
     nx, ny = 256, 128
-    op = SpectralOperator(surface_symbol(nx, ny, 1.0, SLS3.j_plus, SLS3.terms, 1.0, 0.3),
-                          (nx, ny))
+    symbol = surface_symbol(nx, ny, 1.0, SLS3.j_plus, SLS3.terms, 1.0, 0.3)
     f = np.random.default_rng(1).standard_normal(nx * ny)
     got = {}
     for n in ("1", "2", "3"):
         monkeypatch.setenv(S.THREADS_VARIABLE, n)
-        assert S.fft_threads() == int(n)
+        op = SpectralOperator(symbol.copy(), (nx, ny))  # read when the operator is made
+        assert op.threads == int(n)
         got[n] = (op.apply(f.copy()), op.pseudo_solve(f.copy()))
     for n in ("2", "3"):
         assert all(np.array_equal(a, b) for a, b in zip(got["1"], got[n])), n
     monkeypatch.delenv(S.THREADS_VARIABLE)
-    assert S.fft_threads() == S.WORKERS == 2
+    assert SpectralOperator(symbol.copy(), (nx, ny)).threads == S.WORKERS == 2
     for bad in ("0", "-1", "two", "1.5", ""):
         monkeypatch.setenv(S.THREADS_VARIABLE, bad)
         with pytest.raises(ValueError, match=rf"^VISCOSINE_FFT_THREADS='{re.escape(bad)}' is "
                                              r"not allowed: a whole number >= 1$"):
-            op.apply(f.copy())
+            bem.solve_surface(load=0.3, speed=1.0, surface=bem.bisinusoid(1.0), nodes=16)
 
 
 # --------------------------------------------------------------------------------------------
