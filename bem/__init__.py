@@ -21,7 +21,8 @@ the body, the leading edge of a contact is its +x edge.
 
 The public shape is the semi-analytic road's: ``solve`` returns a `BemResult` with the result
 protocol (``scalars``, ``as_dict``, ``fields``, ``patches``, ``diagnostics``,
-``error_estimate``); ``sweep`` tabulates a grid of points; ``solve_si`` takes SI data;
+``error_estimate``); ``solve_meshes`` answers a mesh study (``solve`` on several fixed meshes,
+their grids solved once); ``sweep`` tabulates a grid of points; ``solve_si`` takes SI data;
 ``ACCEPTED`` lists the range of every input and why, ``validate`` checks them (``solve`` calls
 it first) and ``MAX_NODES`` is the largest mesh this machine's memory allows; ``TERM_MIN`` is
 the smallest creep term over J(0+) a material may hold.  ``solve(...,
@@ -31,7 +32,7 @@ the mesh (``_layer.finest_nodes``).
 
 Surfaces (three-dimensional contact): ``solve_surface`` slides a rigid periodic surface z = h(x,
 y) (`bisinusoid`, `self_affine`, `sampled_surface`, `read_surface`) in any direction over the
-half-space or a layer; each mode of the surface is the line contact's mode loaded at the
+half-space or a layer (``solve_surface_meshes``: a grid study); each mode of the surface is the line contact's mode loaded at the
 frequency q·V (``docs/surfaces.md``).  Lengths there are over the cell's side Lx, heights
 ``k z`` with k = 2 pi/Lx.
 """
@@ -45,10 +46,11 @@ from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
 from ._layer import Layer
 from ._result import MESSAGES, BemResult, Patch
-from ._solver import solve
+from ._solver import solve, solve_meshes
 from ._surface import Surface, bisinusoid, read_surface, sampled_surface, self_affine
 from ._surface_result import SurfaceFields, SurfacePatch, SurfaceResult
-from ._surface_solver import max_surface_panels, solve_surface, validate_surface
+from ._surface_solver import (max_surface_panels, solve_surface, solve_surface_meshes,
+                              validate_surface)
 
 
 def influence_coefficients(material, speed, nodes):
@@ -81,5 +83,5 @@ __all__ = ["ACCEPTED", "BemResult", "Fields", "Harmonics", "Layer", "MAX_NODES",
            "Patch", "Prony", "SampledProfile", "Sinusoid", "Surface", "SurfaceFields",
            "SurfacePatch", "SurfaceResult", "SurfaceSIResult", "bisinusoid",
            "influence_coefficients", "max_surface_panels", "read_profile", "read_prony",
-           "read_surface", "sampled_surface", "self_affine", "solve", "solve_si", "solve_surface",
-           "solve_surface_si", "sweep", "validate", "validate_surface", "TERM_MIN"]
+           "read_surface", "sampled_surface", "self_affine", "solve", "solve_meshes", "solve_si",
+           "solve_surface", "solve_surface_meshes", "solve_surface_si", "sweep", "validate", "validate_surface", "TERM_MIN"]

@@ -16,7 +16,7 @@ assembles the result.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from viscosine import DEFAULT_RTOL, ViscosineWarning
@@ -154,6 +154,79 @@ def solve(*, load=None, penetration=None, speed, profile=None, material=None, ra
         load=load, penetration=penetration, speed=speed, profile=profile, material=material,
         ratio=ratio, hk=hk, nodes=nodes, rtol=rtol, max_nodes=max_nodes, tol=tol,
         max_outer=max_outer, restart=restart, max_inner=max_inner, nested=nested, layer=layer)))
+
+
+def solve_meshes(*, nodes, load=None, penetration=None, speed, profile=None, material=None,
+                 ratio=None, hk=None, tol=1e-10, max_outer=50, restart=8, max_inner=300,
+                 layer=None):
+    """A mesh study: `solve` on each fixed mesh of ``nodes``, the grids solved once.
+
+    Fixed meshes solved one by one solve their coarser grids again each time (a study of
+    N = 2^10 ... 2^18 costs about 3.8 solves of its finest grid); here they are one nested
+    sequence, each grid started from the one half as fine (about 2).  Each result is what
+    ``solve(nodes=N, ...)`` answers: its grid started from N/2, its estimate from the grids N/8
+    ... N.  The one difference is below N/8, where ``solve`` jumps by quarters to start its
+    grids: the answers agree to the Krylov tolerance ``tol``, not bit for bit (at N <= 4096
+    they are the same grids, and the same bits).
+
+    Parameters
+    ----------
+    nodes : sequence of int
+        The meshes, each at least 8 panels and the finest divided by a power of two (one
+        nested sequence); given in any order, answered coarse to fine.
+    load, penetration, speed, profile, material, ratio, hk, tol, max_outer, restart, max_inner, layer
+        As for `solve`.
+
+    Returns
+    -------
+    iterator of BemResult
+        One per mesh, coarse to fine, each yielded as soon as its grid is solved (a caller can
+        show progress); ``list(...)`` for all.  The inputs are checked before the first.
+
+    Raises
+    ------
+    ValueError
+        On bad input, naming the parameter, its value and what is allowed.
+    """
+    meshes = _meshes(nodes)
+    p = _problem(load=load, penetration=penetration, speed=speed, profile=profile,
+                 material=material, ratio=ratio, hk=hk, nodes=meshes[-1], rtol=None,
+                 max_nodes=None, tol=tol, max_outer=max_outer, restart=restart,
+                 max_inner=max_inner, nested=True, layer=layer)
+    return (_announced(r) for r in _study(p, meshes))
+
+
+def _meshes(nodes) -> list:
+    """The meshes of `solve_meshes`, checked, coarse to fine."""
+    if isinstance(nodes, (str, bytes)) or not hasattr(nodes, "__iter__"):
+        raise bad("nodes", nodes, "a sequence of meshes (integers >= 8)")
+    meshes = sorted({positive_int("nodes", n, 8) for n in nodes})
+    if not meshes:
+        raise bad("nodes", nodes, "at least one mesh (integers >= 8)")
+    top = meshes[-1]
+    for n in meshes:
+        q, r = divmod(top, n)
+        if r or q & (q - 1):
+            raise bad("nodes", nodes, f"meshes that halve the finest in turn ({top}/{n} is not a "
+                      "power of two): one nested sequence of grids")
+    return meshes
+
+
+def _study(p: _Problem, meshes: list):
+    """The grids of every mesh of ``meshes`` (p.nodes the finest): halvings from the finest
+    down to the coarsest mesh's own first grid (`_sizes`), the result of each mesh taken as its
+    grid is solved (`_grids_result` as on that fixed mesh)."""
+    run = _Run()
+    elastic, harmonic = _elastic_starts(p)
+    low = _sizes(replace(p, nodes=meshes[0]))[0]
+    n, sizes = p.nodes, []
+    while n >= low:
+        sizes.append(n)
+        n //= 2
+    for n in reversed(sizes):
+        _level(p, run, n, elastic, harmonic)  # a fixed mesh: no window, never stopped
+        if n in meshes:
+            yield _grids_result(replace(p, nodes=n), run)
 
 
 # --------------------------------------------------------------------------
@@ -296,8 +369,7 @@ def _refine(p: _Problem) -> BemResult:
     """Solve the grids of `_sizes` in turn until one stops the sequence; the contact window's
     answer where one was given, else `_grids_result`."""
     run = _Run()
-    elastic = (p.profile, Prony(p.material.J0))
-    harmonic = (p.profile, Prony(abs(complex(p.material.jstar([1.0], p.speed)[0]))))
+    elastic, harmonic = _elastic_starts(p)
     for n in _sizes(p):
         answer = _level(p, run, n, elastic, harmonic)
         if answer is not None:
@@ -305,6 +377,13 @@ def _refine(p: _Problem) -> BemResult:
         if run.stopped:
             break
     return _grids_result(p, run)
+
+
+def _elastic_starts(p: _Problem):
+    """The elastic pairs (profile, compliance) a first grid may start from: the relaxed
+    compliance J0, then the first harmonic's |J*| at this speed (`_solve_level`)."""
+    return ((p.profile, Prony(p.material.J0)),
+            (p.profile, Prony(abs(complex(p.material.jstar([1.0], p.speed)[0])))))
 
 
 def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | None:

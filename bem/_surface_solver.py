@@ -26,6 +26,7 @@ from viscosine.checks import bad, positive_int, real
 from ._accepted import ACCEPTED, validate
 from ._estimate import ESTIMATE_SAFETY, _first_order_bound
 from ._grid import _clip_shift, _solve_one
+from ._solver import _meshes
 from ._inputs import Prony
 from ._layer import Layer, mean_displacement
 from ._result import CONVERGED, MESSAGES, STATUS_INVALID, STATUS_TARGET
@@ -239,6 +240,52 @@ def solve_surface(*, load=None, penetration=None, speed, surface=None, direction
     return _refine(prob, progress)
 
 
+def solve_surface_meshes(*, nodes, load=None, penetration=None, speed, surface=None,
+                         direction=0.0, material=None, ratio=None, hk=None, layer=None,
+                         tol=1e-10, max_outer=50, restart=8, max_inner=300, progress=None):
+    """A grid study: `solve_surface` on each fixed grid of ``nodes``, the grids solved once.
+
+    Fixed grids solved one by one solve their coarser grids again each time (a study of
+    64 ... 1024 panels along x costs about 1.8 solves of its finest grid, with its halvings);
+    here they are one sequence, each grid started from the one half as fine (about 1.3).  Each
+    result is what ``solve_surface(nodes=N, ...)`` answers, its estimate from the grids N/8 ...
+    N; only the start of N/8 differs (``solve_surface`` solves it from the elastic contact, the
+    study from N/16), so the answers agree to the Krylov tolerance ``tol``, not bit for bit.  A
+    grid that failed does not stop the study: the next starts afresh.
+
+    Parameters
+    ----------
+    nodes : sequence of int
+        The grids (panels along x), each the finest divided by a power of two; in any order,
+        answered coarse to fine.
+    load, penetration, speed, surface, direction, material, ratio, hk, layer, tol, max_outer, restart, max_inner, progress
+        As for `solve_surface`.
+
+    Returns
+    -------
+    iterator of SurfaceResult
+        One per grid, coarse to fine, each yielded as soon as it is solved; ``list(...)`` for
+        all.  The inputs are checked before the first.
+    """
+    meshes = _meshes(nodes)
+    kw = dict(load=load, penetration=penetration, speed=speed, surface=surface,
+              direction=direction, material=material, ratio=ratio, hk=hk, layer=layer,
+              rtol=None, max_nodes=None, tol=tol, max_outer=max_outer, restart=restart,
+              max_inner=max_inner)
+    _surface_problem(nodes=meshes[0], **kw)  # the coarsest must hold the surface's modes
+    p = _surface_problem(nodes=meshes[-1], **kw)
+    cap = max_surface_panels()
+    p["shapes"] = sorted({s for n in meshes for s in _shapes(p["surface"], n, cap)})
+    return _study(p, meshes, progress)
+
+
+def _study(p: dict, meshes: list, progress):
+    for state in _grids(p, progress, study=True):
+        nx = state[2][1].shape[0]  # the grid just solved
+        if nx in meshes:
+            yield _build(dict(p, nodes=nx), *state)
+
+
 def validate_surface(*, load=None, penetration=None, speed, surface=None, direction=0.0,
                      material=None, ratio=None, hk=None, layer=None, nodes=None, rtol=None,
                      max_nodes=None):
@@ -320,6 +367,15 @@ def _surface_problem(*, load, penetration, speed, surface, direction, material, 
 
 def _refine(p: dict, progress) -> SurfaceResult:
     """Solve the grids in turn (each started from the one before), measure each, estimate."""
+    for state in _grids(p, progress):
+        pass
+    return _build(p, *state)
+
+
+def _grids(p: dict, progress, study=False):
+    """The grids of ``p["shapes"]`` in turn, each started from the last converged one; yields
+    (levels, converged, last, est, reason) after each grid.  Stops where the adaptive target
+    is met and, unless ``study``, after two grids in a row that failed."""
     levels, converged = [], []
     best = last = None
     est, reason = None, "fewer than three converged grids"
@@ -347,6 +403,7 @@ def _refine(p: dict, progress) -> SurfaceResult:
                 if est is not None:
                     text += f", estimate mu {est['mu']:.1e}"
                 progress(text + f" ({time.perf_counter() - t0:.1f} s)")
+            yield levels, converged, last, est, reason
             if p["nodes"] is None and _met(est, p["rtol"], sc["contact_fraction"]):
                 break
         else:
@@ -354,9 +411,9 @@ def _refine(p: dict, progress) -> SurfaceResult:
             best = None  # a grid that failed does not start the next
             if progress is not None:
                 progress(f"surface grid {nx} x {ny}: {res['message']}")
-            if failed >= 2:
+            yield levels, converged, last, est, reason
+            if failed >= 2 and not study:
                 break
-    return _build(p, levels, converged, last, est, reason)
 
 
 def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
