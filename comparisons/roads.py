@@ -326,6 +326,18 @@ def bem_solution(point, nodes, problem):
                      nodes=int(nodes), tol=BEM_TOL, **point_controls(point), **kw)
 
 
+def bem_meshes(point, nodes, problem):
+    """`bem_solution` on each mesh of ``nodes`` (``bem.solve_meshes``: the grids solved once, as
+    one nested sequence): an iterator of the results, coarse to fine, each as its grid is
+    solved."""
+    import bem
+    profile, material = problem
+    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
+    return bem.solve_meshes(profile=profile, material=material, speed=float(point["speed"]),
+                            nodes=[int(n) for n in nodes], tol=BEM_TOL, **point_controls(point),
+                            **kw)
+
+
 def full_contact_load(speed, ratio, hk, layer_description=None):
     """p̃FC(V) of the sinusoid on the standard linear solid ``ratio``, on the half-space or on a
     layer (a plain description, see `layer`): the closed form ``analytic.full_contact``
@@ -411,6 +423,16 @@ def surface_solution(point, nodes):
     return bem.solve_surface(**_surface_point_kwargs(point), surface=surface(point["surface"]),
                              ratio=op.ratio_of(point), nodes=int(nodes), tol=BEM_TOL,
                              **kw)
+
+
+def surface_meshes(point, nodes):
+    """`surface_solution` on each grid of ``nodes`` (``bem.solve_surface_meshes``: the grids
+    solved once): an iterator of the results, coarse to fine, each as its grid is solved."""
+    import bem
+    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
+    return bem.solve_surface_meshes(**_surface_point_kwargs(point),
+                                    surface=surface(point["surface"]), ratio=op.ratio_of(point),
+                                    nodes=[int(n) for n in nodes], tol=BEM_TOL, **kw)
 
 
 def surface_harmonics(description):

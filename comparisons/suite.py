@@ -125,10 +125,10 @@ from .convergence import half_unit
 from .progress import Progress
 
 # the names of the suite's modules, re-exported: one interface (``comparisons.suite.NAME``)
-from .suite_cases import (FIELD_COLUMNS, FIELD_FLOOR, FIELD_POINTS,  # noqa: F401
-                          FORM_NAMES, LAYER_KEYS, REFERENCES, RULE, SAFETY, TOP_KEYS, _problem,
-                          bem_solution, case_material, data_path, is_surface, reference_of,
-                          two_roads)
+from .suite_cases import (BEM_PRESSURE_FLOOR, FIELD_COLUMNS, FIELD_FLOOR,  # noqa: F401
+                          FIELD_POINTS, FORM_NAMES, LAYER_KEYS, REFERENCES, RULE, SAFETY,
+                          TOP_KEYS, _problem, bem_solution, case_material, data_path,
+                          is_surface, reference_of, two_roads)
 from .suite_compute import (FIELDS_HEADER, FOURIER_METHOD, case_fields,  # noqa: F401
                             compute, layer_compression, write_fields)
 from .suite_surfaces import (SURFACE_FIELD_POINTS, SURFACE_KEYS,  # noqa: F401

@@ -19,8 +19,9 @@ from ._errors import SuiteError
 from ._io import read_columns, write_text
 from .convergence import digits, rounded, study
 from .fields import PATCH_KEYS, match_patches, neighbour_max, patch_records
-from .suite_cases import (FIELD_COLUMNS, FIELD_FLOOR, FIELD_POINTS, LAYER_KEYS, SAFETY, _num,
-                          _problem, bem_solution, is_surface, reference_of, two_roads)
+from .suite_cases import (BEM_PRESSURE_FLOOR, FIELD_COLUMNS, FIELD_FLOOR, FIELD_POINTS,
+                          LAYER_KEYS, SAFETY, _num, _problem, is_surface, reference_of,
+                          two_roads)
 from .suite_inputs import DATA, ProfileShape
 from .suite_surfaces import compute_surface, surface_fields
 
@@ -144,7 +145,7 @@ def compute(case, base=DATA, progress=None):
     problem = _problem(point, base)
     shape = ProfileShape(point, base)
     M = _field_points(case, nodes)
-    meshes = _solve_meshes(point, nodes, base, problem, shape, M, progress)
+    meshes = _solve_meshes(point, nodes, problem, shape, M, progress)
     ref, four, ref_failures = _references(point, roads, reference, problem[1])
     four_ok = four is not None and bool(four.success)
     full = _full_contact(meshes.runs, ref)
@@ -183,14 +184,16 @@ class _Meshes(NamedTuple):
     failures: list     # a line per failed solve
 
 
-def _solve_meshes(point, nodes, base, problem, shape, M, progress):
+def _solve_meshes(point, nodes, problem, shape, M, progress):
     """Solve the BEM on every mesh (`_Meshes`), with its patches and, on the two finest, its
     fields on the stated grid of M points; ``progress`` gets a line per mesh."""
+    if list(nodes) != sorted(set(nodes)):
+        raise SuiteError(f"the meshes {nodes} must be distinct and in increasing order")
     runs, patches, failures = [], [], []
     grid_fields = {}
-    for n in nodes:
-        t0 = time.perf_counter()
-        r = bem_solution(point, n, base, problem)
+    t0 = time.perf_counter()
+    # each mesh is solve(nodes=n)'s answer; the grids below it are solved once for all meshes
+    for n, r in zip(nodes, _roads.bem_meshes(point, nodes, problem)):
         runs.append(r if r.success else None)
         if not r.success:
             failures.append(f"N = {n}: {r.message.splitlines()[0][:200]}")
@@ -203,6 +206,7 @@ def _solve_meshes(point, nodes, base, problem, shape, M, progress):
         if progress:
             progress(f"N = {n}: {'ok' if r.success else 'FAILED'} "
                      f"({time.perf_counter() - t0:.2f} s)")
+        t0 = time.perf_counter()
     return _Meshes(nodes, runs, patches, grid_fields, failures)
 
 
@@ -352,7 +356,8 @@ def _certified_fields(point, nodes, grid_fields, ref, M, roads):
             out[c + "_err"] = np.maximum(neighbour_max(diff), FIELD_FLOOR * np.max(np.abs(a)))
     else:
         summary["source"] = (f"BEM values at N = {finest}; error = {SAFETY:g} × largest change "
-                             f"from N = {second} at the point and its neighbours")
+                             f"from N = {second} at the point and its neighbours (a pressure at "
+                             f"least {BEM_PRESSURE_FLOOR:g} × its largest value)")
         for c in FIELD_COLUMNS:
             if bl is None:
                 out[c] = np.full(M, np.nan)
@@ -361,8 +366,8 @@ def _certified_fields(point, nodes, grid_fields, ref, M, roads):
             a = np.asarray(bl[c], float)
             diff = np.abs(a - bp[c]) if bp is not None else np.full(M, np.inf)
             out[c] = a
-            out[c + "_err"] = np.maximum(SAFETY * neighbour_max(diff),
-                                         FIELD_FLOOR * np.max(np.abs(a)))
+            floor = BEM_PRESSURE_FLOOR if c == "pressure" else FIELD_FLOOR
+            out[c + "_err"] = np.maximum(SAFETY * neighbour_max(diff), floor * np.max(np.abs(a)))
     for c in FIELD_COLUMNS:
         summary["max_error"][c] = _num(float(np.max(out[c + "_err"])))
     return out, summary

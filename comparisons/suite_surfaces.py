@@ -231,10 +231,13 @@ def compute_surface(case, progress=None):
     M = int(case.get("field_points", SURFACE_FIELD_POINTS))
     if nodes[-1] % M or nodes[-2] % M:
         raise SuiteError(f"case {case['name']}: the two finest grids must be multiples of {M}")
+    if nodes != sorted(set(nodes)):
+        raise SuiteError(f"case {case['name']}: the grids {nodes} must be distinct and in "
+                         "increasing order")
     runs, failures, grid_fields = [], [], {}
-    for n in nodes:
-        t0 = time.perf_counter()
-        r = _roads.surface_solution(point, n)
+    t0 = time.perf_counter()
+    # each grid is solve_surface(nodes=n)'s answer; the grids below are solved once for all
+    for n, r in zip(nodes, _roads.surface_meshes(point, nodes)):
         runs.append(r if r.success else None)
         if not r.success:
             failures.append(f"N = {n}: {r.message.splitlines()[0][:200]}")
@@ -243,6 +246,7 @@ def compute_surface(case, progress=None):
         if progress:
             progress(f"surface grid {n}: {'ok' if r.success else 'FAILED'} "
                      f"({time.perf_counter() - t0:.2f} s)")
+        t0 = time.perf_counter()
     exact_vals, line_fields = _exact_road(point, refs)
     four, four_rec = None, None
     if "surface_reference" in refs:
