@@ -35,7 +35,8 @@ from ._gap import _gap_solve, _gap_solve_sep, _gap_step_tol
 from ._influence import collocation_shifts, influence_coefficients_nd
 from ._inputs import Prony
 from ._layer import symbol_correction
-from ._operator import CirculantOperator, gmres
+from ._krylov import _dual_floor, _dual_solve, _keeps, _linear_solve, _with_retry
+from ._operator import CirculantOperator
 from ._result import (CONVERGED, CYCLED, KRYLOV_FAILED, MESSAGES, OUTER_EXHAUSTED,
                       WINDOW_FAILED)
 
@@ -76,14 +77,6 @@ RETREAT_FACTOR = 1.0
 #: step (from a converged coarser grid it settles in 1 or 2; at E_inf/E0 = 3, V/V0 = 0.01,
 #: 4e-5 below the full-contact load, it wandered 13 steps at 2^21 before a set repeated)
 DUAL_MAX_STEPS = 3
-#: restart length of the second try of a Krylov solve that stagnated with `restart` (the
-#: default 8 can stagnate for E_inf/E0 in the hundreds; 40 has not been seen to)
-KRYLOV_RETRY_RESTART = 40
-#: memory bound of that second try's Krylov basis (40 vectors of 2^21 panels)
-KRYLOV_RETRY_BYTES = 41 * 8 * 2 ** 21
-#: the Krylov solves keep their preconditioned vectors (one transform pair fewer per cycle)
-#: while these take at most this memory: restart 8 on a set of up to 2^21 panels
-KRYLOV_KEEP_BYTES = 8 * 8 * 2 ** 21
 #: the gap step (`_gap_solve`) where the load lies at most this fraction of itself below the
 #: grid's full-contact load: the contact is the period less a narrow gap, and the gaps, solved
 #: for directly, keep their own relative precision (as differences C sigma - y + s they carry
@@ -126,118 +119,6 @@ class _Grid:
     def x(self):
         """Panel centres X_j = j/N - 1/2, made when asked (not kept: memory at large N)."""
         return np.arange(self.n) / self.n - 0.5
-
-
-def _restricted_inverse(op: CirculantOperator, idx: np.ndarray):
-    def apply(x):
-        return op.apply_on(idx, x, inverse=True)
-
-    return apply
-
-
-def _linear_solve(grid: _Grid, idx, load, sep, x0, tol, restart, max_inner):
-    """Solve on the active set; returns (sigma_full, s, iterations, relres, ok, C sigma on
-    every panel).  The last product GMRES makes is with its answer, so that product over all
-    panels is C sigma: kept, it gives the gaps without another transform."""
-    op = grid.op
-    held = [None]
-
-    def product(values):
-        held[0] = None  # memory: one whole product alive at a time
-        held[0] = op.apply_on(idx, values, whole=True)
-        return held[0][idx]
-
-    n = grid.n
-    na = idx.size
-    pinv = _restricted_inverse(op, idx)
-    per = grid.nodes  # the load is the mean over the period
-    if load is not None:
-        q = pinv(np.ones(na))
-        beta = q.sum() / per
-        # the load equation is scaled by scale/load so that the absolute Krylov tolerance
-        # (tol times the scale of the heights) bounds its error relative to the load
-        f = grid.scale / load
-
-        def matvec(z):
-            out = np.empty(na + 1)
-            out[:na] = product(z[:na])
-            out[:na] += z[na]
-            out[na] = f * z[:na].sum() / per
-            return out
-
-        def precond(r):
-            # block elimination of s with P = R C^+ R^T in place of C_AA^-1
-            u = pinv(r[:na])
-            t = (u.sum() / per - r[na] / f) / beta
-            out = np.empty(na + 1)
-            out[:na] = u - t * q
-            out[na] = t
-            return out
-
-        b = np.append(grid.y[idx], f * load)
-    else:
-        matvec = product
-        precond = pinv
-        b = grid.y[idx] - sep
-    # tol bounds every entry of the residual: gaps (k v) on A and the load equation
-    z, its, relres, ok = gmres(matvec, precond, b, x0, tol * grid.scale, restart, max_inner,
-                               keep=_keeps(restart, b.size))
-    sigma = np.zeros(n)
-    sigma[idx] = z[:na]
-    s = z[na] if load is not None else sep
-    return sigma, s, its, relres, ok, held[0]
-
-
-def _dual_solve(grid: _Grid, free, load, x0, tol, restart, max_inner):
-    """Load control with most panels in contact: the displacements u_F of the free panels.
-
-    With u = y on the contact and u_F on the free set, sigma = C^+ u + load (C^+ maps onto
-    zero-mean pressures, so the mean is the load) and the free panels carry no pressure:
-    (C^+ u)_F = -load, a system of the size of the free set, preconditioned by R_F C R_F^T.
-    The displacement is u less its mean, so the mean separation is s = mean(u) (the gap is then
-    zero on the contact exactly).  The Krylov tolerance bounds the pressure left on the free
-    panels, relative to the load (not below the rounding C^+ amplifies); it is set to zero there
-    afterwards.
-    Returns (sigma_full, s, iterations, residual over h k (scaled like the primal), ok).
-    """
-    op = grid.op
-    m = free.size
-    base = grid.y.copy()
-    base[free] = 0.0
-    g = op.pseudo_solve(base)[free]
-    del base
-
-    def matvec(z):
-        return op.apply_on(free, z, inverse=True)
-
-    def precond(r):
-        return op.apply_on(free, r)
-
-    b = -load - g
-    # C^+ amplifies the rounding of u by up to max|1/symbol|: below that the residual cannot go
-    floor = _dual_floor(grid)
-    atol = max(tol * load, floor) * math.sqrt(m)
-    z, its, res, ok = gmres(matvec, precond, b, x0, atol, restart, max_inner,
-                            keep=_keeps(restart, m))
-    u = grid.y.copy()
-    u[free] = z
-    del z
-    sigma = op.pseudo_solve(u)
-    sigma += load
-    sigma[free] = 0.0
-    s = float(u.mean())
-    return sigma, s, its, res / load * grid.amp, ok, None
-
-
-def _keeps(restart, size) -> bool:
-    """Whether a Krylov solve keeps its preconditioned vectors (`gmres`'s ``keep``)."""
-    return 8 * restart * size <= KRYLOV_KEEP_BYTES
-
-
-def _dual_floor(grid: _Grid):
-    """The pressure error (units of the pressure) below which the free-panel step cannot go:
-    C^+ amplifies the rounding of u by up to max|1/symbol|."""
-    return 16.0 * np.finfo(float).eps * grid.op.max_inverse * grid.amp
 
 
 def _full_contact_deficit(grid: _Grid, load):
@@ -523,28 +404,6 @@ def _next_active_set(active, sigma, gap, new, roundoff, amp):
     changed = _kernels.update_active_set(active, sigma, gap, new,
                                          roundoff * float(np.max(sigma)), roundoff * amp)
     return None if changed == 0 else np.packbits(new).tobytes()
-
-
-def _with_retry(solve, restart, size, widen=True):
-    """``solve(restart)``, and once more with _retry_restart's wider restart if it did not
-    converge: restarted GMRES can stagnate where the operator is far from normal (a stiff
-    material, loss tangent ~ 10, near its memory length).  ``size``: the Krylov vectors'.
-    GMRES updates its start in place, so the second try starts from the first one's iterate
-    (whose residual is no larger than the start's)."""
-    sigma, s, its, relres, ok, product = solve(restart)
-    wide = _retry_restart(restart, size)
-    if not ok and widen and wide > restart:
-        del product  # memory
-        sigma, s, more, relres, ok, product = solve(wide)
-        its += more
-    return sigma, s, its, relres, ok, product
-
-
-def _retry_restart(restart, size):
-    """The restart length of the second try of a stagnated Krylov solve: KRYLOV_RETRY_RESTART,
-    or less where its basis (restart + 1 vectors of `size`) would pass KRYLOV_RETRY_BYTES."""
-    fit = KRYLOV_RETRY_BYTES // (8 * max(size, 1)) - 1
-    return max(restart, min(KRYLOV_RETRY_RESTART, fit))
 
 
 def _prolong(prev: dict, prev_grid: _Grid, grid: _Grid):
