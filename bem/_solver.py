@@ -1,4 +1,5 @@
-"""The adaptive mesh: `solve`, the public entry of the BEM road.
+"""The adaptive mesh: `solve`, the public entry of the BEM road (and `solve_meshes`, a study over
+fixed meshes whose grids are solved once).
 
 Nested iteration: the problem is solved on grids N = 512, 1024, ... (:mod:`bem._grid`, each
 started from the contact of the one before: the sub-panel contact edges of one grid give the

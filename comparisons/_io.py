@@ -146,34 +146,36 @@ def check_output_dir(option, path, create) -> None:
         raise BadInput(f"{option} {path}: the folder is not writable")
 
 
-def file_bytes(option, path, allowed=None):
+def file_bytes(option, path, allowed=None, shown=None):
     """The bytes of an input file, which must be a regular UTF-8 text file.
 
     Raises
     ------
     BadInput
         One line ``<option> <path>: <problem>`` (a missing, special, unreadable, binary or
-        non-UTF-8 file), then ``; allowed: <allowed>`` when given.
+        non-UTF-8 file), then ``; allowed: <allowed>`` when given; ``shown``: the path as
+        the message shows it, if not as given (a Python caller's ``'name.txt'``).
     """
+    said = path if shown is None else shown
     if path == "":
         raise BadInput(f"{option} '' is not allowed: the name of a file")
     try:
         st = os.stat(path)
     except OSError as exc:
-        raise bad_input(option, path, f"cannot read the file ({exc.strerror})", allowed) from None
+        raise bad_input(option, said, f"cannot read the file ({exc.strerror})", allowed) from None
     if not stat.S_ISREG(st.st_mode):  # a FIFO is refused here, never read (it could block)
-        raise bad_input(option, path, f"not a regular file ({_kind(st.st_mode)})", allowed)
+        raise bad_input(option, said, f"not a regular file ({_kind(st.st_mode)})", allowed)
     try:
         with open(path, "rb") as fh:
             data = fh.read()
     except OSError as exc:
-        raise bad_input(option, path, f"cannot read the file ({exc.strerror})", allowed) from None
+        raise bad_input(option, said, f"cannot read the file ({exc.strerror})", allowed) from None
     if b"\0" in data:
-        raise bad_input(option, path, "a binary file, not text", allowed)
+        raise bad_input(option, said, "a binary file, not text", allowed)
     try:
         data.decode("utf-8")
     except UnicodeDecodeError as exc:
-        raise bad_input(option, path, f"not UTF-8 text (byte {exc.start})", allowed) from None
+        raise bad_input(option, said, f"not UTF-8 text (byte {exc.start})", allowed) from None
     return data
 
 

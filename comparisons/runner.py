@@ -108,19 +108,21 @@ def read_material(path, *, temperature=None, wlf=None, shift_table=None, max_res
     return m.info, m
 
 
-def read_input(name, path, **reader_options):
+def read_input(name, path, door=op.CLI, **reader_options):
     """Read a --profile, --prony or --surface file: ``({"path", "sha256"}, parsed object)``.
 
     The file must be a regular UTF-8 text file; the parsing is the BEM's own
     (`bem.read_profile`, `bem.read_prony`, `bem.read_surface`, through `comparisons.roads`).
-    Every refusal names the option and the file.
+    Every refusal names the file as the user gave it: ``--prony PATH`` on the command line
+    (``door`` CLI), ``prony path 'PATH'`` for a spec dict given in Python (``door`` PYTHON).
 
     Raises
     ------
     BadInput
     """
-    where = f"--{name} {path}"
-    data = file_bytes(f"--{name}", path)
+    label, shown = (f"--{name}", path) if door == op.CLI else (f"{name} path", repr(path))
+    where = f"{label} {shown}"
+    data = file_bytes(label, path, shown=shown)
     reader = {"profile": roads.read_profile, "prony": roads.read_prony,
               "surface": roads.read_surface}[name]
     try:
@@ -178,9 +180,9 @@ def validate(spec, door=op.PYTHON):
             if spec.get("field_points") is not None:
                 op.check_field_points(spec["field_points"])
         elif spec["solver"] == "bem" and spec.get("surface") is not None:
-            roads.validate_surface(spec, _bem_problem(spec)[1], _surface(spec))
+            roads.validate_surface(spec, _bem_problem(spec, door)[1], _surface(spec, door))
         elif spec["solver"] == "bem":
-            roads.validate_bem(spec, _bem_problem(spec))
+            roads.validate_bem(spec, _bem_problem(spec, door))
         else:
             raise BadInput(f"solver={spec['solver']!r} is not allowed: analytic or bem")
     except BadInput:
@@ -189,23 +191,24 @@ def validate(spec, door=op.PYTHON):
         raise op.named(exc, door, spec) from None
 
 
-def _bem_problem(spec):
+def _bem_problem(spec, door=op.PYTHON):
     """``(profile, material)`` of a BEM spec: its parsed profile and creep series (carried in
-    the spec, else read again), None for the sinusoid of ``hk`` and the standard linear solid
-    of ``ratio``."""
+    the spec, else read again: a file that cannot be read is named at ``door``), None for the
+    sinusoid of ``hk`` and the standard linear solid of ``ratio``."""
     profile = material = None
     if spec.get("profile") is not None:
         obj = spec.get("_profile")
-        profile = obj if obj is not None else read_input("profile", spec["profile"]["path"])[1]
+        profile = obj if obj is not None else \
+            read_input("profile", spec["profile"]["path"], door)[1]
     if spec.get("prony") is not None:
         obj = spec.get("_prony")
-        material = obj if obj is not None else read_input("prony", spec["prony"]["path"])[1]
+        material = obj if obj is not None else read_input("prony", spec["prony"]["path"], door)[1]
     elif spec.get("material") is not None:
         material = _material(spec).prony
     return profile, material
 
 
-def _surface(spec):
+def _surface(spec, door=op.PYTHON):
     """A surface file's parsed Surface (carried in the spec, else read again), or None."""
     if spec["surface"].get("kind") != "file":
         return None
@@ -214,7 +217,7 @@ def _surface(spec):
         return obj
     desc = spec["surface"]
     extra = {k: desc[k] for k in ("units", "length") if desc.get(k) is not None}
-    return read_input("surface", desc["path"], **extra)[1]
+    return read_input("surface", desc["path"], door, **extra)[1]
 
 
 def _material(spec):
@@ -237,7 +240,7 @@ def describe_material(spec):
     elif spec.get("prony") is not None:
         obj = spec.get("_prony")
         if obj is None:
-            obj = read_input("prony", spec["prony"]["path"])[1]
+            obj = read_input("prony", spec["prony"]["path"], op.PYTHON)[1]
         info = {"form": "creep", **spec["prony"], "terms": len(obj.J),
                 **_materials.references("creep", False, 1.0, None)}
     else:

@@ -230,10 +230,50 @@ def table_cost(big_exponent, out) -> None:
           f"{rows['cold'][1] / rows['nested'][1]:.2f} in time", file=out)
 
 
+def table_study(exponents, load, out) -> None:
+    """A mesh study over N = 2^min … 2^max: each fixed mesh solved on its own against
+    ``bem.solve_meshes`` (the grids solved once), in FFT pairs, time and the answers' spread."""
+    mat = bem.Prony.standard_linear_solid(3.0)
+    nodes = [2 ** e for e in exponents]
+    speed = 1.0
+    kw = dict(profile=bem.Sinusoid(1.0), material=mat, speed=speed, load=load)
+    print(f"\n## A mesh study, N = {nodes[0]} … {nodes[-1]} (SLS ratio 3, hk 1, speed {speed}, "
+          f"load {load})", file=out)
+    print(f"one by one: bem.solve(nodes=N) for each N; study: bem.solve_meshes(nodes=[...]). "
+          f"FFT pairs in pair equivalents of N = {nodes[-1]}; time: best of 3 after a warm-up; "
+          "spread: the largest relative difference of mu between the two on any mesh", file=out)
+    print(f"{'how':>11} {'FFT pairs':>10} {'time [s]':>9}", file=out)
+    bem.solve(nodes=4096, **kw)
+    rows, answers = {}, {}
+    for name in ("one by one", "study"):
+        _progress(f"mesh study {name}")
+
+        def run():
+            if name == "study":
+                return list(bem.solve_meshes(nodes=nodes, **kw))
+            return [bem.solve(nodes=n, **kw) for n in nodes]
+
+        with _FftCount(nodes[-1]) as count:
+            answers[name] = run()
+        best = math.inf
+        for _ in range(3):
+            t0 = time.perf_counter()
+            run()
+            best = min(best, time.perf_counter() - t0)
+        rows[name] = (count.total, best)
+        print(f"{name:>11} {count.total:10.1f} {best:9.3f}", file=out)
+    spread = max(abs(a.mu - b.mu) / abs(b.mu)
+                 for a, b in zip(answers["study"], answers["one by one"]))
+    print(f"study/one by one: {rows['study'][0] / rows['one by one'][0]:.2f} in FFT pairs, "
+          f"{rows['study'][1] / rows['one by one'][1]:.2f} in time; spread of mu {spread:.1e}",
+          file=out)
+
+
 def tables(big_exponent=20, min_exponent=8, max_exponent=16, load=0.3, out=None) -> int:
     """Print every table: elastic limits (at ``load``: partial contact at both ends) and
     iterations on N = 2^min_exponent … 2^max_exponent, full contact at N = 1024, timing and
-    cost at N = 2^big_exponent; exit status 0, or 2 for exponents outside [3, 22]."""
+    cost at N = 2^big_exponent, a mesh study over N = 2^min_exponent … 2^max_exponent; exit
+    status 0, or 2 for exponents outside [3, 22]."""
     if not 3 <= min_exponent <= max_exponent <= 22 or not 3 <= big_exponent <= 22:
         print("bench-bem: exponents must satisfy 3 <= min <= max <= 22 and 3 <= big <= 22",
               file=sys.stderr)
@@ -246,4 +286,5 @@ def tables(big_exponent=20, min_exponent=8, max_exponent=16, load=0.3, out=None)
     table_iterations(exps, out)
     table_timing(big_exponent, out)
     table_cost(big_exponent, out)
+    table_study(exps, load, out)
     return 0

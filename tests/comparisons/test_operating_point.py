@@ -66,6 +66,22 @@ def test_every_bad_value_names_its_option_on_the_cli_and_its_keyword_in_python(p
     assert str(exc.value).startswith(f"{keyword}="), str(exc.value)
 
 
+@pytest.mark.parametrize("name", ["prony", "profile", "surface"])
+def test_an_unreadable_file_is_named_as_given_at_each_door(name, tmp_path, capsys):
+    """On the command line by its option; in a spec dict given to `runner` by its key."""
+    missing = str(tmp_path / "gone.txt")
+    desc = {"kind": "file", "path": missing} if name == "surface" else {"path": missing}
+    spec = dict(solver="bem", load=0.3, speed=1.0, nodes=64, **{name: desc})
+    with pytest.raises(BadInput) as exc:
+        runner.validate(spec)
+    assert str(exc.value).startswith(f"{name} path {missing!r}: cannot read the file"), exc.value
+    out = runner.run(spec)
+    assert out["kind"] == "bad_input" and out["error"] == str(exc.value)
+    rc, err = _cli(["point", "--solver", "bem", "--load", "0.3", "--speed", "1", f"--{name}",
+                    missing], capsys)
+    assert rc == 2 and f"--{name} {missing}: cannot read the file" in err, err
+
+
 def test_every_parameter_of_the_table_has_an_option_and_a_keyword():
     for name, (option, keyword) in op.PARAMETERS.items():
         assert option.startswith("--") and keyword.isidentifier(), name
