@@ -16,7 +16,8 @@ complementarity conditions).  On the active set A the linear system is
 solved by GMRES on FFT products, right-preconditioned by the restriction of
 the inverse circulant ``P = R C^+ R^T`` (symbol ``~ |n|/(2 J*(n))``) with an
 exact block elimination of ``s``.  The operator is not symmetric (only its
-symmetric part is positive definite), hence GMRES and not conjugate gradients.
+symmetric part is positive definite), hence GMRES and not conjugate gradients
+(:mod:`bem._krylov`, with the free-panel solve where most panels are in contact).
 A grid starts from the solved coarser one (`_prolong`), else from the elastic contact.
 Just below full contact a step solves for the gaps of the free panels instead
 (:mod:`bem._gap`, under load and under penetration control).

@@ -164,17 +164,19 @@ def solve_meshes(*, nodes, load=None, penetration=None, speed, profile=None, mat
 
     Fixed meshes solved one by one solve their coarser grids again each time (a study of
     N = 2^10 ... 2^18 costs about 3.8 solves of its finest grid); here they are one nested
-    sequence, each grid started from the one half as fine (about 2).  Each result is what
-    ``solve(nodes=N, ...)`` answers: its grid started from N/2, its estimate from the grids N/8
-    ... N.  The one difference is below N/8, where ``solve`` jumps by quarters to start its
-    grids: the answers agree to the Krylov tolerance ``tol``, not bit for bit (at N <= 4096
-    they are the same grids, and the same bits).
+    sequence from the coarsest mesh's first grid up, each grid started from the one half as
+    fine (about 2).  Each result is what ``solve(nodes=N, ...)`` answers: its grid started from
+    N/2, its estimate from the grids N/8 ... N.  The differences lie below N/8, where ``solve``
+    jumps by quarters to start its grids, and in the retries of a first grid that failed (the
+    study's first grid has them, not the grids it starts from there): the answers agree to the
+    Krylov tolerance ``tol``, not bit for bit.  Where both solve the same grids (the coarsest
+    mesh, and up to N = 4096 when the coarsest is 1024) they are the same bits.
 
     Parameters
     ----------
     nodes : sequence of int
-        The meshes, each at least 8 panels and the finest divided by a power of two (one
-        nested sequence); given in any order, answered coarse to fine.
+        The meshes, distinct, each at least 8 panels and the finest divided by a power of two
+        (one nested sequence); given in any order, answered coarse to fine.
     load, penetration, speed, profile, material, ratio, hk, tol, max_outer, restart, max_inner, layer
         As for `solve`.
 
@@ -201,9 +203,12 @@ def _meshes(nodes) -> list:
     """The meshes of `solve_meshes`, checked, coarse to fine."""
     if isinstance(nodes, (str, bytes)) or not hasattr(nodes, "__iter__"):
         raise bad("nodes", nodes, "a sequence of meshes (integers >= 8)")
-    meshes = sorted({positive_int("nodes", n, 8) for n in nodes})
+    given = [positive_int("nodes", n, 8) for n in nodes]
+    meshes = sorted(set(given))
     if not meshes:
         raise bad("nodes", nodes, "at least one mesh (integers >= 8)")
+    if len(meshes) != len(given):
+        raise bad("nodes", nodes, "distinct meshes (each answered once)")
     top = meshes[-1]
     for n in meshes:
         q, r = divmod(top, n)

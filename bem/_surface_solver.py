@@ -168,6 +168,17 @@ def _estimate(run: list):
     return est, None
 
 
+def _halvings(converged: list) -> list:
+    """The scalars of the last converged grids that halve in turn (N, N/2, ... : at most four),
+    fine to coarse: the grids an estimate rests on (a grid that failed breaks the chain)."""
+    run = [converged[-1]]
+    for c in reversed(converged[:-1]):
+        if len(run) == 4 or c[0] * 2 != run[-1][0]:
+            break
+        run.append(c)
+    return [sc for _, sc in run]
+
+
 def _met(est, rtol, fraction) -> bool:
     """Whether the estimate meets rtol: μ and Δ/h_ref relative, the contact fraction absolute
     (its relative estimate times ``fraction``, the grid's; docs/surfaces.md says why)."""
@@ -247,17 +258,19 @@ def solve_surface_meshes(*, nodes, load=None, penetration=None, speed, surface=N
 
     Fixed grids solved one by one solve their coarser grids again each time (a study of
     64 ... 1024 panels along x costs about 1.8 solves of its finest grid, with its halvings);
-    here they are one sequence, each grid started from the one half as fine (about 1.3).  Each
-    result is what ``solve_surface(nodes=N, ...)`` answers, its estimate from the grids N/8 ...
-    N; only the start of N/8 differs (``solve_surface`` solves it from the elastic contact, the
-    study from N/16), so the answers agree to the Krylov tolerance ``tol``, not bit for bit.  A
-    grid that failed does not stop the study: the next starts afresh.
+    here they are one sequence from the coarsest grid's N/8 up, every grid started from the one
+    half as fine (about 1.3).  Each result is what ``solve_surface(nodes=N, ...)`` answers, its
+    estimate from the grids N/8 ... N; only the start of N/8 differs (``solve_surface`` starts
+    it afresh, from the full-contact pressure clipped to carry the load, the study from N/16),
+    so the answers agree to the Krylov tolerance ``tol``, not bit for bit (the coarsest grid's
+    are the same bits).  A grid that failed does not stop the study: the next starts afresh,
+    and an estimate rests only on grids that halve in turn.
 
     Parameters
     ----------
     nodes : sequence of int
-        The grids (panels along x), each the finest divided by a power of two; in any order,
-        answered coarse to fine.
+        The grids (panels along x), distinct, each the finest divided by a power of two; in any
+        order, answered coarse to fine.
     load, penetration, speed, surface, direction, material, ratio, hk, layer, tol, max_outer, restart, max_inner, progress
         As for `solve_surface`.
 
@@ -272,11 +285,19 @@ def solve_surface_meshes(*, nodes, load=None, penetration=None, speed, surface=N
               direction=direction, material=material, ratio=ratio, hk=hk, layer=layer,
               rtol=None, max_nodes=None, tol=tol, max_outer=max_outer, restart=restart,
               max_inner=max_inner)
-    _surface_problem(nodes=meshes[0], **kw)  # the coarsest must hold the surface's modes
+    low = _surface_problem(nodes=meshes[0], **kw)["shapes"][0][0]  # the coarsest's first grid
     p = _surface_problem(nodes=meshes[-1], **kw)
-    cap = max_surface_panels()
-    p["shapes"] = sorted({s for n in meshes for s in _shapes(p["surface"], n, cap)})
+    aspect = p["surface"].aspect
+    p["shapes"] = [(n, _ny_for(n, aspect)) for n in _doublings(low, meshes[-1])]
     return _study(p, meshes, progress)
+
+
+def _doublings(low, top) -> list:
+    """low, 2 low, ... up to top (top = low 2^k)."""
+    out = [low]
+    while out[-1] < top:
+        out.append(out[-1] * 2)
+    return out
 
 
 def _study(p: dict, meshes: list, progress):
@@ -393,10 +414,9 @@ def _grids(p: dict, progress, study=False):
             failed = 0
             sc = measure(res, grid, p["surface"], p["direction"], p["load"])
             levels[-1] = levels[-1][:4] + (grid.op.transforms / 2.0,)
-            converged.append((nx, sc, res, grid))
+            converged.append((nx, sc))
             best = (res, grid)
-            run = [c[1] for c in reversed(converged[-4:])]
-            est, reason = _estimate(run)
+            est, reason = _estimate(_halvings(converged))
             if progress is not None:
                 text = (f"surface grid {nx} x {ny}: {res['nit']} active-set steps, "
                         f"mu = {sc['mu']:.6g}, contact {sc['contact_fraction']:.4f}")
@@ -455,7 +475,7 @@ def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
                        f"(absolute) > rtol {p['rtol']:g} at {nx} x {ny}")
     if status == CONVERGED and est is None:
         warnings.append(f"no error estimate: {reason}")
-    counts = [c[1]["n_patches"] for c in converged[-4:]]
+    counts = [sc["n_patches"] for sc in reversed(_halvings(converged))] if converged else []
     if status == CONVERGED and len(set(counts)) > 1:
         warnings.append("the number of contact patches changes with the grid (" +
                         ", ".join(str(c) for c in counts) + ", coarse to fine)")

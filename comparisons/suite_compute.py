@@ -193,7 +193,7 @@ def _solve_meshes(point, nodes, problem, shape, M, progress):
     grid_fields = {}
     t0 = time.perf_counter()
     # each mesh is solve(nodes=n)'s answer; the grids below it are solved once for all meshes
-    for n, r in zip(nodes, _roads.bem_meshes(point, nodes, problem)):
+    for n, r in zip(nodes, _roads.bem_meshes(point, nodes, problem), strict=True):
         runs.append(r if r.success else None)
         if not r.success:
             failures.append(f"N = {n}: {r.message.splitlines()[0][:200]}")

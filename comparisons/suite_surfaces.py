@@ -237,7 +237,7 @@ def compute_surface(case, progress=None):
     runs, failures, grid_fields = [], [], {}
     t0 = time.perf_counter()
     # each grid is solve_surface(nodes=n)'s answer; the grids below are solved once for all
-    for n, r in zip(nodes, _roads.surface_meshes(point, nodes)):
+    for n, r in zip(nodes, _roads.surface_meshes(point, nodes), strict=True):
         runs.append(r if r.success else None)
         if not r.success:
             failures.append(f"N = {n}: {r.message.splitlines()[0][:200]}")

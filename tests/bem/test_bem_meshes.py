@@ -42,17 +42,28 @@ def test_each_mesh_of_a_line_study_is_the_fixed_mesh():
             _close(r.scalars(), own.scalars(), 1e-8)
             _close(r.error_estimate, own.error_estimate, 1e-4)
             assert np.max(np.abs(r.pressure - own.pressure)) < 1e-8 * np.max(own.pressure)
-            # the study's grids halve in turn: N/16 started N/8 here
+            # the study's grids halve in turn: N/8 was started from N/16 here
             assert [lv[0] for lv in r.levels][-5:] == [r.nodes >> k for k in (4, 3, 2, 1, 0)]
 
 
-def test_a_line_study_yields_each_mesh_as_it_is_solved():
+def test_a_line_study_yields_each_mesh_as_it_is_solved(monkeypatch):
+    from bem import _solver
+    solved = []
+    real = _solver._level
+
+    def spy(p, run, n, *args):
+        solved.append(n)
+        return real(p, run, n, *args)
+    monkeypatch.setattr(_solver, "_level", spy)
     it = bem.solve_meshes(nodes=[512, 1024], **LINE)
+    assert solved == []  # nothing before the first result is asked for
     first = next(it)
-    assert first.nodes == 512 and first.levels == bem.solve(nodes=512, **LINE).levels
-    assert next(it).nodes == 1024
+    assert first.nodes == 512 and solved == [128, 256, 512]
+    assert next(it).nodes == 1024 and solved[-1] == 1024
     with pytest.raises(StopIteration):
         next(it)
+    monkeypatch.undo()
+    assert first.levels == bem.solve(nodes=512, **LINE).levels
 
 
 def test_a_penetration_study_on_a_layer_is_the_fixed_mesh():
@@ -72,6 +83,7 @@ def test_a_penetration_study_on_a_layer_is_the_fixed_mesh():
     ([512, 1536], "1536/512 is not a power of two"),
     ([4, 8], "nodes=4"),
     ([8.5, 16], "nodes=8.5"),
+    ([1024, 2048, 1024], "distinct meshes"),
 ])
 def test_bad_meshes_are_refused_by_name(nodes, why):
     with pytest.raises(ValueError, match="nodes") as e:
@@ -79,23 +91,26 @@ def test_bad_meshes_are_refused_by_name(nodes, why):
     assert why in str(e.value)
 
 
-@pytest.mark.parametrize("solve,kw", [(bem.solve_meshes, dict(LINE, load=-1.0)),
-                                      (bem.solve_meshes, dict(LINE, rtol=1e-3)),
-                                      (bem.solve_surface_meshes, dict(SURFACE, load=-1.0))])
-def test_bad_input_is_refused_before_anything_is_solved(solve, kw):
+@pytest.mark.parametrize("solve,kw,name", [
+    (bem.solve_meshes, dict(LINE, load=-1.0), "load"),
+    (bem.solve_meshes, dict(LINE, tol=1.0), "tol"),
+    (bem.solve_surface_meshes, dict(SURFACE, load=-1.0), "load"),
+    (bem.solve_surface_meshes, dict(SURFACE, max_inner=0), "max_inner"),
+])
+def test_bad_input_is_refused_before_anything_is_solved(solve, kw, name):
     """At the call, not at the first result: the study is an iterator."""
-    with pytest.raises((ValueError, TypeError)):
+    with pytest.raises(ValueError, match=f"^{name}="):
         solve(nodes=[64, 128], **kw)
 
 
 def test_each_grid_of_a_surface_study_is_the_fixed_grid():
     nodes = [32, 64, 128]
-    study = list(bem.solve_surface_meshes(nodes=nodes, **SURFACE))
+    study = list(bem.solve_surface_meshes(nodes=nodes[::-1], **SURFACE))
     assert [r.nodes for r in study] == nodes
     for r in study:
         own = bem.solve_surface(nodes=r.nodes, **SURFACE)
         assert r.success and own.success and r.n_patches == own.n_patches
-        if r.nodes == 32:  # the same grids, 8 ... 32, from the same start
+        if r.nodes in (32, 64):  # the same grids (8 ... 32, 8 ... 64) from the same start
             assert r.mu == own.mu and r.error_estimate == own.error_estimate
             np.testing.assert_array_equal(r.pressure, own.pressure)
         else:  # N/8 started from N/16 here, afresh on the fixed grid
@@ -110,3 +125,30 @@ def test_a_surface_study_refuses_a_grid_below_the_surface_modes():
     assert s.min_nodes()[0] > 8
     with pytest.raises(ValueError, match="nodes=8 is not allowed: at least 18 panels"):
         bem.solve_surface_meshes(nodes=[8, 64], load=0.2, speed=1.0, surface=s)
+
+
+def test_a_surface_estimate_rests_only_on_grids_that_halve(monkeypatch):
+    """A grid that failed breaks the chain: the next grid's estimate is not made from grids
+    four or eight times coarser (the fixed grid gives none there either)."""
+    from bem import _surface_solver as S
+    from bem._result import OUTER_EXHAUSTED
+    real = S._solve_one
+
+    def failing(grid, *args, **kw):
+        res = real(grid, *args, **kw)
+        if grid.shape[0] == 32:
+            res = dict(res, status=OUTER_EXHAUSTED, message="made to fail here")
+        return res
+    monkeypatch.setattr(S, "_solve_one", failing)
+    r64 = list(bem.solve_surface_meshes(nodes=[64], **SURFACE))[0]
+    fixed = bem.solve_surface(nodes=64, **SURFACE)
+    assert [lv[0] for lv in r64.levels] == [8, 16, 32, 64] and r64.levels[2][3] != 0
+    assert r64.error_estimate is None and fixed.error_estimate is None
+    assert r64.mu == fixed.mu
+
+
+def test_the_suite_refuses_meshes_out_of_order():
+    from comparisons import suite
+    case = suite.get_case("sls-above-fc-v1")
+    with pytest.raises(suite.SuiteError, match="increasing order"):
+        suite.compute(dict(case, nodes=list(reversed(case["nodes"]))))
