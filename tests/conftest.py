@@ -115,6 +115,19 @@ def _working_folder(tmp_path_factory, monkeypatch):
     monkeypatch.chdir(tmp_path_factory.mktemp("cwd"))
 
 
+@pytest.fixture
+def read_only_folder(tmp_path, monkeypatch):
+    """A folder the process may not write into (``tmp_path/locked``): as root every folder is
+    writable, so ``os.access`` is made to see this one read-only."""
+    import os
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    real = os.access
+    monkeypatch.setattr(os, "access", lambda p, mode, **k: False if str(p).startswith(
+        str(locked)) else real(p, mode, **k))
+    return locked
+
+
 # ---------------------------------------------------------------------------- shared results
 @pytest.fixture(scope="session")
 def quick_report(tmp_path_factory):

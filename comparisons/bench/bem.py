@@ -194,6 +194,16 @@ class _FftCount:
         return False
 
 
+def _best_of_3(run) -> float:
+    """The shortest of three timed calls of ``run`` (seconds)."""
+    best = math.inf
+    for _ in range(3):
+        t0 = time.perf_counter()
+        run()
+        best = min(best, time.perf_counter() - t0)
+    return best
+
+
 def table_cost(big_exponent, out) -> None:
     mat = bem.Prony.standard_linear_solid(3.0)
     n, speed, load = 2**big_exponent, 1.0, 0.3
@@ -218,11 +228,7 @@ def table_cost(big_exponent, out) -> None:
 
         with _FftCount(n) as count:
             r = run()
-        best = math.inf
-        for _ in range(3):
-            t0 = time.perf_counter()
-            run()
-            best = min(best, time.perf_counter() - t0)
+        best = _best_of_3(run)
         rows[name] = (count.total, best)
         print(f"{name:>7} {count.total:10.1f} {best:9.3f} {r.nit:>4} "
               f"{str(r.inner_iterations):>40}", file=out)
@@ -260,11 +266,7 @@ def table_study(load, out, exponents=STUDY_EXPONENTS) -> None:
 
         with _FftCount(nodes[-1]) as count:
             answers[name] = run()
-        best = math.inf
-        for _ in range(3):
-            t0 = time.perf_counter()
-            run()
-            best = min(best, time.perf_counter() - t0)
+        best = _best_of_3(run)
         rows[name] = (count.total, best)
         print(f"{name:>11} {count.total:10.1f} {best:9.3f}", file=out)
     spread = max(abs(a.mu - b.mu) / abs(b.mu)

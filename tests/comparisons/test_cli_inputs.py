@@ -7,7 +7,6 @@ import pytest
 
 from comparisons import cli
 from comparisons import operating_point as op
-from comparisons.cli import _common
 
 POINT = ["point", "--solver", "bem", "--load", "0.3", "--speed", "1"]
 APOINT = ["point", "--solver", "analytic", "--load", "0.3", "--speed", "1"]
@@ -231,13 +230,8 @@ def test_help_of_point_and_sweep_shows_the_accepted_range_of_each_input(capsys):
         assert "analytic: E∞/E0 > 1 and ≤ 1e+08" in text
 
 
-def test_an_unwritable_report_folder_is_refused_like_point_and_sweep(tmp_path, monkeypatch,
-                                                                      capsys):
-    locked = tmp_path / "locked"
-    locked.mkdir()
-    real = os.access
-    monkeypatch.setattr(os, "access", lambda p, mode, **k: False if str(p).startswith(
-        str(locked)) else real(p, mode, **k))
+def test_an_unwritable_report_folder_is_refused_like_point_and_sweep(read_only_folder, capsys):
+    locked = read_only_folder
     for out, where in ((locked / "report", f"the folder {locked} is not writable"),
                        (locked, "the folder is not writable")):
         assert cli.main(["report", "--out", str(out)]) == 2

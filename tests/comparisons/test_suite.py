@@ -47,6 +47,22 @@ def series(data):
             if c["point"].get("prony") or c["point"].get("material")}
 
 
+def compute_with_fourier_spy(case, monkeypatch):
+    """``suite.compute(case)`` with ``analytic.fourier_solve`` watched: (certified, fields, the
+    keywords of its one call)."""
+    import analytic
+    real = analytic.fourier_solve
+    calls = []
+
+    def spy(**kw):
+        calls.append(kw)
+        return real(**kw)
+    monkeypatch.setattr(analytic, "fourier_solve", spy)
+    cert, fields = suite.compute(case)
+    (kw,) = calls
+    return cert, fields, kw
+
+
 def _fourier_cases(data):
     return [c for c in data["cases"] if c.get("reference") == "fourier"]
 
@@ -222,19 +238,10 @@ def test_a_fourier_reference_certifies_no_more_than_the_bem_alone(monkeypatch):
     cheap): same values, no digit more than the BEM-only certification, the reference called on
     the case's own creep series; and when the reference fails the case is incomplete, certifies
     nothing and says why."""
-    import analytic
     shipped = suite.get_case("prony2-full")
     case = copy.deepcopy(shipped)
     case["reference"] = "fourier"
-    real = analytic.fourier_solve
-    calls = []
-
-    def spy(**kw):
-        calls.append(kw)
-        return real(**kw)
-    monkeypatch.setattr(analytic, "fourier_solve", spy)
-    cert, _ = suite.compute(case)
-    (kw,) = calls
+    cert, _, kw = compute_with_fourier_spy(case, monkeypatch)
     assert kw["require_resolved"] is False and kw["load"] == 2.0 and kw["hk"] == 1.0
     assert kw["creep"] == (1.0, (0.4, 0.3), (0.1, 10.0))
     assert cert["status"] == "complete" and cert["method"] == suite.FOURIER_METHOD
@@ -245,6 +252,9 @@ def test_a_fourier_reference_certifies_no_more_than_the_bem_alone(monkeypatch):
         bem_alone = suite.digits(rec["value"], suite.SAFETY * rec["bem"]["estimate"])
         assert 0 < rec["digits"] <= bem_alone, key
         assert rec["error"] >= abs(rec["value"] - rec["fourier"]["value"])
+
+    import analytic
+    real = analytic.fourier_solve
 
     def failing(**kw):
         return dataclasses.replace(real(**kw), success=False, status=1,

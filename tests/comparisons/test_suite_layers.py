@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from comparisons import cli, suite
+from test_suite import compute_with_fourier_spy
 
 
 @pytest.fixture(scope="module")
@@ -130,19 +131,10 @@ def test_a_layer_case_on_coarse_meshes_agrees_with_what_is_shipped(data, monkeyp
     Fourier reference on the same layer included): every scalar within the coarse study's error
     of the shipped value, never more digits; the Fourier reference is called with the case's
     layer as k d; the fields within both errors."""
-    import analytic
     shipped = suite.get_case("sls-layer-frictionless-d0.1", data)
     case = copy.deepcopy(shipped)
     case["nodes"] = [1024, 2048, 4096, 8192, 16384]
-    real = analytic.fourier_solve
-    calls = []
-
-    def spy(**kw):
-        calls.append(kw)
-        return real(**kw)
-    monkeypatch.setattr(analytic, "fourier_solve", spy)
-    cert, fields = suite.compute(case)
-    (kw,) = calls
+    cert, fields, kw = compute_with_fourier_spy(case, monkeypatch)
     lay = shipped["point"]["layer"]
     assert kw["layer"] == {"thickness": 2 * math.pi * lay["thickness_over_wavelength"],
                            "foundation": lay["foundation"], "nu": lay["nu"]}

@@ -129,14 +129,8 @@ def test_long_messages_keep_the_prefix_and_stay_under_400_characters(tmp_path, c
 
 
 def test_an_unwritable_out_is_refused_up_front_like_point_and_sweep(tmp_path, capsys,
-                                                                     monkeypatch):
-    """As root every folder is writable, so the check is made to see a read-only one."""
-    import os
-    locked = tmp_path / "locked"
-    locked.mkdir()
-    real = os.access
-    monkeypatch.setattr(os, "access", lambda p, mode, **k: False if str(p).startswith(
-        str(locked)) else real(p, mode, **k))
+                                                                     read_only_folder):
+    locked = read_only_folder
     path = tmp_path / "s.jsonl"
     path.write_text('{"mu": 0.3}\n', encoding="utf-8")
     for out_dir, where in ((locked / "rep", f"the folder {locked} is not writable"),
