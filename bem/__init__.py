@@ -46,7 +46,8 @@ from ._influence import influence_coefficients_nd as _coefficients
 from ._inputs import Harmonics, Prony, SampledProfile, Sinusoid, read_profile, read_prony
 from ._layer import Layer
 from ._result import MESSAGES, BemResult, Patch
-from ._solver import solve, solve_meshes
+from ._solver import solve
+from ._study import solve_meshes
 from ._surface import Surface, bisinusoid, read_surface, sampled_surface, self_affine
 from ._surface_result import SurfaceFields, SurfacePatch, SurfaceResult
 from ._surface_solver import (max_surface_panels, solve_surface, solve_surface_meshes,

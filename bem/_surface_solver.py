@@ -26,7 +26,7 @@ from viscosine.checks import bad, positive_int, real
 from ._accepted import ACCEPTED, validate
 from ._estimate import ESTIMATE_SAFETY, _first_order_bound
 from ._grid import _clip_shift, _solve_one
-from ._solver import _meshes
+from ._study import _meshes
 from ._inputs import Prony
 from ._layer import Layer, mean_displacement
 from ._result import CONVERGED, MESSAGES, STATUS_INVALID, STATUS_TARGET

@@ -47,14 +47,14 @@ def test_each_mesh_of_a_line_study_is_the_fixed_mesh():
 
 
 def test_a_line_study_yields_each_mesh_as_it_is_solved(monkeypatch):
-    from bem import _solver
+    from bem import _study
     solved = []
-    real = _solver._level
+    real = _study._level
 
     def spy(p, run, n, *args):
         solved.append(n)
         return real(p, run, n, *args)
-    monkeypatch.setattr(_solver, "_level", spy)
+    monkeypatch.setattr(_study, "_level", spy)
     it = bem.solve_meshes(nodes=[512, 1024], **LINE)
     assert solved == []  # nothing before the first result is asked for
     first = next(it)

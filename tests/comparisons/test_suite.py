@@ -434,9 +434,9 @@ def test_check_of_an_unknown_case_is_bad_input(capsys):
 # ---------------------------------------------------------------------------- the whole suite
 @pytest.mark.slow
 def test_the_whole_suite_check_passes(tmp_path, subset_check):
-    """Every case recomputed, in this test process (about two minutes for the line's cases,
-    the six Fourier-referenced broad spectra 5-12 s each, and about two more for the eight
-    surface cases, their 1024² grids and the surface reference).  Not in two processes: the
+    """Every case recomputed, in this test process (on one idle core about 80 s for the line's
+    cases, the six Fourier-referenced broad spectra 4-9 s each, and 95 s for the eight surface
+    cases, their 1024² grids and the surface reference).  Not in two processes: the
     other test process fills the second core, and a third process on two cores costs more CPU
     than it saves (the check in two processes is test_check_in_local_processes_is_the_serial
     _check's).  The subset's cases, recomputed above from the same definitions, are taken from
