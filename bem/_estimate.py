@@ -172,6 +172,19 @@ def _unresolved_memory(material, speed, nodes, panels=None):
     return bound
 
 
+def _halvings(scalars: list) -> list:
+    """The last (N, scalars) of ``scalars`` (converged grids, coarse to fine) whose N halve in
+    turn, N, N/2, ... (at most ESTIMATE_GRIDS), fine to coarse: the grids an estimate rests on.
+    A grid missing from the sequence (one that failed) breaks the chain.  The surface BEM's
+    estimate rests on the same chain."""
+    run = [scalars[-1]]
+    for n, sc in reversed(scalars[:-1]):
+        if len(run) == ESTIMATE_GRIDS or n * 2 != run[-1][0]:
+            break
+        run.append((n, sc))
+    return run
+
+
 def _estimate(scalars, material, speed, layer=None, load_given=True):
     """A-posteriori error estimate from the last converged grids N/8 (when there), N/4, N/2, N.
 
@@ -195,11 +208,7 @@ def _estimate(scalars, material, speed, layer=None, load_given=True):
     """
     if len(scalars) < 3:
         return None, "fewer than three converged grids", None
-    run = [scalars[-1]]
-    for n, sc in reversed(scalars[:-1]):
-        if len(run) == ESTIMATE_GRIDS or n * 2 != run[-1][0]:
-            break
-        run.append((n, sc))
+    run = _halvings(scalars)
     if len(run) < 3:
         return None, "no three consecutive converged grids", None
     counts = {sc["npatch"] for _, sc in run}

@@ -25,8 +25,8 @@ from viscosine.checks import bad, positive_int, real
 
 from ._accepted import ACCEPTED, MAX_NODES, validate
 from ._assemble import build_result
-from ._estimate import (ESTIMATE_GRIDS, ESTIMATE_SAFETY, _estimate, _level_scalars, _met,
-                        _unresolved_memory)
+from ._estimate import (ESTIMATE_GRIDS, ESTIMATE_SAFETY, _estimate, _halvings, _level_scalars,
+                        _met, _unresolved_memory)
 from ._grid import START_NODES, _Grid, _solve_one
 from ._inputs import Prony, Sinusoid
 from ._layer import Layer, finest_nodes
@@ -353,16 +353,6 @@ def _level(p: _Problem, run: _Run, n: int, elastic, harmonic) -> BemResult | Non
     return None
 
 
-def _chain(scalars) -> int:
-    """How many of the last converged grids halve in turn (N, N/2, ...; at most
-    ESTIMATE_GRIDS): the grids the estimate rests on."""
-    count = 1
-    while count < min(len(scalars), ESTIMATE_GRIDS) and \
-            scalars[-count - 1][0] * 2 == scalars[-count][0]:
-        count += 1
-    return count
-
-
 def _on_four_grids(p: _Problem, run: _Run, elastic, harmonic) -> bool:
     """Whether the estimate that met the target rests on four grids, N/8 ... N; the adaptive
     mesh stops only there.  Three grids can agree by chance: the edges' place in their panels
@@ -376,7 +366,7 @@ def _on_four_grids(p: _Problem, run: _Run, elastic, harmonic) -> bool:
     was started from it, is taken as it is), its scalars join the estimate and the target is
     judged again; where it lies in the ladder it failed, and the next grid gives the four.
     Full contact (every grid of the estimate) has no edges and stops on three."""
-    count = _chain(run.scalars)
+    count = len(_halvings(run.scalars))  # the grids the estimate rests on
     if count >= ESTIMATE_GRIDS or \
             all(sc["contact_fraction"] == 1.0 for _, sc in run.scalars[-count:]):
         return True  # full contact has no edges: its errors fall smoothly, O(1/N^2)

@@ -24,7 +24,7 @@ import viscosine
 from viscosine.checks import bad, positive_int, real
 
 from ._accepted import ACCEPTED, validate
-from ._estimate import ESTIMATE_SAFETY, _first_order_bound
+from ._estimate import ESTIMATE_SAFETY, _first_order_bound, _halvings
 from ._grid import _clip_shift, _solve_one
 from ._study import _meshes
 from ._inputs import Prony
@@ -166,17 +166,6 @@ def _estimate(run: list):
         scale = abs(vals[0]) if k in RELATIVE else abs(run[0]["mu"])  # mu_lateral: over |μ|
         est[k] = e / scale if scale > 0 else (0.0 if e == 0 else math.inf)
     return est, None
-
-
-def _halvings(converged: list) -> list:
-    """The scalars of the last converged grids that halve in turn (N, N/2, ... : at most four),
-    fine to coarse: the grids an estimate rests on (a grid that failed breaks the chain)."""
-    run = [converged[-1]]
-    for c in reversed(converged[:-1]):
-        if len(run) == 4 or c[0] * 2 != run[-1][0]:
-            break
-        run.append(c)
-    return [sc for _, sc in run]
 
 
 def _met(est, rtol, fraction) -> bool:
@@ -416,7 +405,7 @@ def _grids(p: dict, progress, study=False):
             levels[-1] = levels[-1][:4] + (grid.op.transforms / 2.0,)
             converged.append((nx, sc))
             best = (res, grid)
-            est, reason = _estimate(_halvings(converged))
+            est, reason = _estimate([sc for _, sc in _halvings(converged)])
             if progress is not None:
                 text = (f"surface grid {nx} x {ny}: {res['nit']} active-set steps, "
                         f"mu = {sc['mu']:.6g}, contact {sc['contact_fraction']:.4f}")
@@ -475,7 +464,7 @@ def _build(p, levels, converged, last, est, reason) -> SurfaceResult:
                        f"(absolute) > rtol {p['rtol']:g} at {nx} x {ny}")
     if status == CONVERGED and est is None:
         warnings.append(f"no error estimate: {reason}")
-    counts = [sc["n_patches"] for sc in reversed(_halvings(converged))] if converged else []
+    counts = [sc["n_patches"] for _, sc in reversed(_halvings(converged))] if converged else []
     if status == CONVERGED and len(set(counts)) > 1:
         warnings.append("the number of contact patches changes with the grid (" +
                         ", ".join(str(c) for c in counts) + ", coarse to fine)")

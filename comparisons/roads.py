@@ -315,15 +315,20 @@ def fourier_solution(point, material):
                                   hk=op.hk_of(point), require_resolved=False, **kw)
 
 
-def bem_solution(point, nodes, problem):
-    """The BEM solution at an operating point dict on ``nodes`` panels (Krylov tolerance
-    `BEM_TOL`); ``problem`` is ``(profile, material)``, the BEM's objects; the point's
-    ``layer`` (a plain description, see `layer`), if any, is under the profile."""
-    import bem
+def _case_bem_kwargs(point, problem) -> dict:
+    """The keywords of the line BEM at a suite case's point dict but the mesh: ``problem`` is
+    ``(profile, material)``, the BEM's objects; the point's ``layer`` (a plain description, see
+    `layer`), if any, under the profile; Krylov tolerance `BEM_TOL`."""
     profile, material = problem
     kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
-    return bem.solve(profile=profile, material=material, speed=float(point["speed"]),
-                     nodes=int(nodes), tol=BEM_TOL, **point_controls(point), **kw)
+    return dict(profile=profile, material=material, speed=float(point["speed"]), tol=BEM_TOL,
+                **point_controls(point), **kw)
+
+
+def bem_solution(point, nodes, problem):
+    """The BEM solution at an operating point dict on ``nodes`` panels (`_case_bem_kwargs`)."""
+    import bem
+    return bem.solve(nodes=int(nodes), **_case_bem_kwargs(point, problem))
 
 
 def bem_meshes(point, nodes, problem):
@@ -331,11 +336,7 @@ def bem_meshes(point, nodes, problem):
     one nested sequence): an iterator of the results, coarse to fine, each as its grid is
     solved."""
     import bem
-    profile, material = problem
-    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
-    return bem.solve_meshes(profile=profile, material=material, speed=float(point["speed"]),
-                            nodes=[int(n) for n in nodes], tol=BEM_TOL, **point_controls(point),
-                            **kw)
+    return bem.solve_meshes(nodes=[int(n) for n in nodes], **_case_bem_kwargs(point, problem))
 
 
 def full_contact_load(speed, ratio, hk, layer_description=None):
@@ -414,25 +415,27 @@ def _surface_point_kwargs(point):
                 direction=op.direction_of(point))
 
 
+def _case_surface_kwargs(point) -> dict:
+    """The keywords of the surface BEM at a surface operating point dict but the grid: Krylov
+    tolerance `BEM_TOL`; the point's ``layer`` (a plain description, see `layer`), if any,
+    under it."""
+    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
+    return dict(_surface_point_kwargs(point), surface=surface(point["surface"]),
+                ratio=op.ratio_of(point), tol=BEM_TOL, **kw)
+
+
 def surface_solution(point, nodes):
     """The surface BEM (``bem.solve_surface``) at a surface operating point dict on a fixed grid
-    of ``nodes`` panels along x (its halvings solved too: its own estimate), Krylov tolerance
-    `BEM_TOL`; the point's ``layer`` (a plain description, see `layer`), if any, under it."""
+    of ``nodes`` panels along x (its halvings solved too: its own estimate)."""
     import bem
-    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
-    return bem.solve_surface(**_surface_point_kwargs(point), surface=surface(point["surface"]),
-                             ratio=op.ratio_of(point), nodes=int(nodes), tol=BEM_TOL,
-                             **kw)
+    return bem.solve_surface(nodes=int(nodes), **_case_surface_kwargs(point))
 
 
 def surface_meshes(point, nodes):
     """`surface_solution` on each grid of ``nodes`` (``bem.solve_surface_meshes``: the grids
     solved once): an iterator of the results, coarse to fine, each as its grid is solved."""
     import bem
-    kw = {} if point.get("layer") is None else {"layer": layer(point["layer"])}
-    return bem.solve_surface_meshes(**_surface_point_kwargs(point),
-                                    surface=surface(point["surface"]), ratio=op.ratio_of(point),
-                                    nodes=[int(n) for n in nodes], tol=BEM_TOL, **kw)
+    return bem.solve_surface_meshes(nodes=[int(n) for n in nodes], **_case_surface_kwargs(point))
 
 
 def surface_harmonics(description):

@@ -151,6 +151,16 @@ def _problem(point, base=DATA):
     return profile, material
 
 
+def increasing_meshes(case) -> list:
+    """A case's meshes (``nodes``), which must be distinct and in increasing order: a mesh study
+    answers them coarse to fine.  SuiteError otherwise."""
+    nodes = [int(n) for n in case["nodes"]]
+    if nodes != sorted(set(nodes)):
+        raise SuiteError(f"case {case['name']}: the meshes {nodes} must be distinct and in "
+                         "increasing order")
+    return nodes
+
+
 def bem_solution(point, nodes, base=DATA, problem=None):
     """The BEM solution at an operating point on ``nodes`` panels (`roads.bem_solution`, Krylov
     tolerance `roads.BEM_TOL`); ``problem`` is read from the point's files under ``base`` when

@@ -17,7 +17,7 @@ from . import roads as _roads
 from ._errors import SuiteError
 from ._io import temporary_name
 from .convergence import digits, rounded, study
-from .suite_cases import FIELD_COLUMNS, FIELD_FLOOR, SAFETY, _num
+from .suite_cases import FIELD_COLUMNS, FIELD_FLOOR, SAFETY, _num, increasing_meshes
 from .suite_inputs import DATA
 
 # --------------------------------------------------------------------------- surface cases
@@ -226,14 +226,11 @@ def compute_surface(case, progress=None):
         the values and ``<col>_err`` on the M × M stated grid.
     """
     point = case["point"]
-    nodes = [int(n) for n in case["nodes"]]
+    nodes = increasing_meshes(case)
     refs = surface_references(case)
     M = int(case.get("field_points", SURFACE_FIELD_POINTS))
     if nodes[-1] % M or nodes[-2] % M:
         raise SuiteError(f"case {case['name']}: the two finest grids must be multiples of {M}")
-    if nodes != sorted(set(nodes)):
-        raise SuiteError(f"case {case['name']}: the grids {nodes} must be distinct and in "
-                         "increasing order")
     runs, failures, grid_fields = [], [], {}
     t0 = time.perf_counter()
     # each grid is solve_surface(nodes=n)'s answer; the grids below are solved once for all
